@@ -1,0 +1,167 @@
+#include "cvtplant/analysis/embedding.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "cvtplant/analysis/errors.hpp"
+#include "cvtplant/analysis/neighbours.hpp"
+#include "cvtplant/analysis/series.hpp"
+
+namespace cvt::analysis {
+
+// docs/analysis.md#ami: histogram estimate with equal-width bins over the range.
+AmiResult average_mutual_information(const std::vector<double>& x, int max_lag, int bins) {
+  validate_series(x, 16, "ami");
+  const std::size_t n = x.size();
+  max_lag = std::clamp(max_lag, 1, static_cast<int>(n / 4));
+  if (bins <= 0) bins = std::clamp(static_cast<int>(std::lround(std::cbrt(static_cast<double>(n)))), 8, 64);
+  AmiResult r;
+  r.bins = bins;
+  const auto [lo_it, hi_it] = std::minmax_element(x.begin(), x.end());
+  const double lo = *lo_it, width = (*hi_it - lo) / bins;
+  std::vector<int> b(n);
+  for (std::size_t i = 0; i < n; ++i) b[i] = std::min(bins - 1, static_cast<int>((x[i] - lo) / width));
+  std::vector<double> joint(static_cast<std::size_t>(bins) * bins), pa(bins), pb(bins);
+  for (int lag = 0; lag <= max_lag; ++lag) {
+    std::fill(joint.begin(), joint.end(), 0.0);
+    std::fill(pa.begin(), pa.end(), 0.0);
+    std::fill(pb.begin(), pb.end(), 0.0);
+    const std::size_t cnt = n - static_cast<std::size_t>(lag);
+    for (std::size_t i = 0; i < cnt; ++i) {
+      joint[static_cast<std::size_t>(b[i]) * bins + b[i + lag]] += 1;
+      pa[b[i]] += 1;
+      pb[b[i + lag]] += 1;
+    }
+    double I = 0;
+    for (int p = 0; p < bins; ++p)
+      for (int q = 0; q < bins; ++q) {
+        const double j = joint[static_cast<std::size_t>(p) * bins + q];
+        if (j > 0) I += j / cnt * std::log(j * cnt / (pa[p] * pb[q]));
+      }
+    r.ami.push_back(I);
+  }
+  const double m = mean(x);
+  double c0 = 0;
+  for (double v : x) c0 += (v - m) * (v - m);
+  for (int lag = 0; lag <= max_lag; ++lag) {
+    double c = 0;
+    for (std::size_t i = 0; i + lag < n; ++i) c += (x[i] - m) * (x[i + lag] - m);
+    r.acf.push_back(c / c0);
+  }
+  for (int lag = 1; lag < max_lag; ++lag)
+    if (r.ami[lag] < r.ami[lag - 1] && r.ami[lag] <= r.ami[lag + 1]) {
+      r.tau_ami = lag;
+      break;
+    }
+  for (int lag = 1; lag <= max_lag; ++lag)
+    if (r.acf[lag] <= 0) {
+      r.tau_acf_zero = lag;
+      break;
+    }
+  if (r.tau_ami > 0) {
+    r.tau = r.tau_ami;
+    r.method = "ami_first_minimum";
+  } else {
+    int t = 0;
+    for (int lag = 1; lag <= max_lag; ++lag)
+      if (r.ami[lag] <= r.ami[0] / std::exp(1.0)) {
+        t = lag;
+        break;
+      }
+    if (t > 0) {
+      r.tau = t;
+      r.method = "ami_1_over_e";
+    } else if (r.tau_acf_zero > 0) {
+      r.tau = r.tau_acf_zero;
+      r.method = "acf_zero";
+    } else {
+      r.tau = 1;
+      r.method = "fallback_1";
+    }
+  }
+  return r;
+}
+
+// docs/analysis.md#fnn: Kennel et al. (1992), Rtol and Atol criteria, R_A = std(x).
+FnnResult false_nearest_neighbours(const std::vector<double>& x, const FnnOptions& opt) {
+  if (opt.m_max < 1 || opt.tau < 1) throw InputError("fnn: need m_max >= 1 and tau >= 1");
+  const std::size_t need = static_cast<std::size_t>(opt.m_max) * opt.tau + 20;
+  validate_series(x, need, "fnn");
+  FnnResult r;
+  r.theiler = opt.theiler >= 0 ? opt.theiler : default_theiler(x);
+  const double ra = stddev(x);
+  bool found = false;
+  for (int m = 1; m <= opt.m_max; ++m) {
+    // One spare sample per vector for the (m+1)-th coordinate.
+    const Embedding e = delay_embed(x, m, opt.tau, static_cast<std::size_t>(opt.tau));
+    const NeighbourIndex index(e);
+    std::size_t valid = 0, f_any = 0, f_r = 0, f_a = 0;
+    for (std::size_t i = 0; i < e.n; ++i) {
+      std::size_t j;
+      double d;
+      if (!index.nearest(i, r.theiler, j, d) || !(d > 0)) continue;
+      const double extra = std::abs(x[i + static_cast<std::size_t>(m) * opt.tau] - x[j + static_cast<std::size_t>(m) * opt.tau]);
+      const bool c1 = extra / d > opt.rtol;
+      const bool c2 = std::sqrt(d * d + extra * extra) / ra > opt.atol;
+      ++valid;
+      f_r += c1;
+      f_a += c2;
+      f_any += (c1 || c2);
+    }
+    if (valid == 0) throw InputError("fnn: no valid neighbour pairs (duplicate points or too few points)");
+    r.m.push_back(m);
+    r.fraction.push_back(static_cast<double>(f_any) / valid);
+    r.fraction_rtol.push_back(static_cast<double>(f_r) / valid);
+    r.fraction_atol.push_back(static_cast<double>(f_a) / valid);
+    if (!found && r.fraction.back() <= opt.threshold) {
+      r.dimension = m;
+      found = true;
+    }
+  }
+  r.reached = found;
+  if (!found) r.dimension = opt.m_max;
+  return r;
+}
+
+// docs/analysis.md#cao: Cao (1997) E1/E2 with the Euclidean norm (Cao uses the
+// maximum norm; see the doc for why this does not change the reading).
+CaoResult cao(const std::vector<double>& x, const CaoOptions& opt) {
+  if (opt.m_max < 1 || opt.tau < 1) throw InputError("cao: need m_max >= 1 and tau >= 1");
+  validate_series(x, static_cast<std::size_t>(opt.m_max + 1) * opt.tau + 20, "cao");
+  CaoResult r;
+  r.theiler = opt.theiler >= 0 ? opt.theiler : default_theiler(x);
+  std::vector<double> E, Es;
+  for (int m = 1; m <= opt.m_max + 1; ++m) {
+    const Embedding e = delay_embed(x, m, opt.tau, static_cast<std::size_t>(opt.tau));
+    const NeighbourIndex index(e);
+    double sum_a = 0, sum_s = 0;
+    std::size_t cnt = 0;
+    for (std::size_t i = 0; i < e.n; ++i) {
+      std::size_t j;
+      double d;
+      if (!index.nearest(i, r.theiler, j, d) || !(d > 0)) continue;
+      const double extra = x[i + static_cast<std::size_t>(m) * opt.tau] - x[j + static_cast<std::size_t>(m) * opt.tau];
+      sum_a += std::sqrt(d * d + extra * extra) / d;
+      sum_s += std::abs(extra);
+      ++cnt;
+    }
+    if (cnt == 0) throw InputError("cao: no valid neighbour pairs");
+    E.push_back(sum_a / cnt);
+    Es.push_back(sum_s / cnt);
+  }
+  bool found = false;
+  for (int m = 1; m <= opt.m_max; ++m) {
+    r.m.push_back(m);
+    r.e1.push_back(E[m] / E[m - 1]);
+    r.e2.push_back(Es[m] / Es[m - 1]);
+    if (!found && r.e1.back() >= opt.e1_threshold) {
+      r.dimension = m;
+      found = true;
+    }
+  }
+  r.reached = found;
+  if (!found) r.dimension = opt.m_max;
+  return r;
+}
+
+}  // namespace cvt::analysis

@@ -1,0 +1,201 @@
+// `cvtplant oscillator`: the seed's 2-DOF stick-slip oscillator (Eq. 9) run
+// with a fixed-step method in any scalar type (docs/cli.md#oscillator).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "io_util.hpp"
+#include "registry.hpp"
+#include "cvtplant/integrate/method.hpp"
+#include "cvtplant/plant/oscillator.hpp"
+#include "cvtplant/scalar/fixed_eigen.hpp"
+#include "cvtplant/scalar/scalar.hpp"
+
+namespace {
+
+struct Options {
+  std::string friction = "coulomb";
+  std::string x0 = "0,0,0,0";
+  double t_end_s = 10.0;
+  double dt_s = 1e-4;
+  std::string integrator = "rk4";
+  std::string scalar = "double";
+  std::string csv;
+  int every = 1;
+  bool json = false;
+  // Settling test on the last window (docs/cli.md#oscillator-summary).
+  double settle_window_s = 1.0;
+};
+
+struct Summary {
+  double final_state[4] = {0, 0, 0, 0};
+  bool finite = true;
+  bool settled = false;
+  double x1_min = 0, x1_max = 0, v_abs_max = 0;
+  double period_s = 0;  // 0 if no oscillation detected
+  long steps = 0;
+  double wall_s = 0;
+};
+
+template <class T>
+Summary run(const Options& o, const cvt::FrictionParams<double>& fr, const double x0[4], std::FILE* csv) {
+  using Osc = cvt::StickSlipOscillator<T>;
+  const auto pd = cvt::OscillatorParams<double>::seed_section3(fr);
+  const Osc sys(pd.template cast<T>());
+  cvt::Method method{};
+  cvt::parse_method(o.integrator.c_str(), method);
+  typename Osc::State x;
+  for (int i = 0; i < 4; ++i) x(i) = cvt::from_double<T>(x0[i]);
+  const T h = cvt::from_double<T>(o.dt_s);
+  const double h_actual = cvt::to_double(h);  // fixed point rounds the step
+  const long n = std::lround(o.t_end_s / h_actual);
+  const long window_start = std::max<long>(0, n - std::lround(o.settle_window_s / h_actual));
+
+  Summary s;
+  s.x1_min = 1e300;
+  s.x1_max = -1e300;
+  // Period from upward zero crossings of v1 in the second half of the run
+  // (the stick-slip cycle reverses the masses every period).
+  double last_cross_t = -1, first_cross_t = -1;
+  int crossings = 0;
+  double prev_v1 = cvt::to_double(x(1));
+  const double v_mid = 0.0;
+
+  if (csv != nullptr) {
+    std::fprintf(csv, "t,x1,v1,x2,v2,F1,F2\n");
+  }
+  auto write_row = [&](double t) {
+    if (csv == nullptr) return;
+    const T v = sys.params().belt_speed_m_s;
+    const double F1 = cvt::to_double(sys.friction_force_N(T(x(1) - v), T(sys.params().m1_kg * sys.params().g_m_s2)));
+    const double F2 = cvt::to_double(sys.friction_force_N(T(x(3) - v), T(sys.params().m2_kg * sys.params().g_m_s2)));
+    std::fprintf(csv, "%.9g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", t, cvt::to_double(x(0)), cvt::to_double(x(1)),
+                 cvt::to_double(x(2)), cvt::to_double(x(3)), F1, F2);
+  };
+  write_row(0.0);
+
+  const auto t0 = std::chrono::steady_clock::now();
+  for (long i = 1; i <= n; ++i) {
+    cvt::step(method, sys, x, h);
+    const double t = static_cast<double>(i) * h_actual;
+    const double v1 = cvt::to_double(x(1));
+    if (!std::isfinite(v1) || !std::isfinite(cvt::to_double(x(0)))) {
+      s.finite = false;
+      s.steps = i;
+      break;
+    }
+    if (i >= window_start) {
+      const double x1 = cvt::to_double(x(0));
+      s.x1_min = std::min(s.x1_min, x1);
+      s.x1_max = std::max(s.x1_max, x1);
+      s.v_abs_max = std::max({s.v_abs_max, std::fabs(v1), std::fabs(cvt::to_double(x(3)))});
+    }
+    if (prev_v1 < v_mid && v1 >= v_mid && t > 0.5 * o.t_end_s) {
+      if (first_cross_t < 0) first_cross_t = t;
+      last_cross_t = t;
+      ++crossings;
+    }
+    prev_v1 = v1;
+    if (csv != nullptr && i % o.every == 0) write_row(t);
+    s.steps = i;
+  }
+  s.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  for (int i = 0; i < 4; ++i) s.final_state[i] = cvt::to_double(x(i));
+  // Settled: the last window shows neither motion nor drift at the resolution
+  // that matters to the seed's figures (1e-4 m, 1e-3 m/s).
+  s.settled = s.finite && (s.x1_max - s.x1_min) < 1e-4 && s.v_abs_max < 1e-3;
+  if (!s.settled && crossings >= 2) s.period_s = (last_cross_t - first_cross_t) / (crossings - 1);
+  return s;
+}
+
+cvtcli::Action register_oscillator(CLI::App& app) {
+  auto opt = std::make_shared<Options>();
+  CLI::App* sub = app.add_subcommand(
+      "oscillator", "Run the seed's 2-DOF stick-slip oscillator (Eq. 9, section-3 parameters)");
+  sub->add_option("--friction", opt->friction, "Friction law: coulomb (constant mu0) or stribeck (section 3)")
+      ->check(CLI::IsMember({"coulomb", "stribeck"}));
+  sub->add_option("--x0", opt->x0, "Initial state X1,V1,X2,V2 [m, m/s, m, m/s]");
+  sub->add_option("--t-end", opt->t_end_s, "Simulated time [s]")->required();
+  sub->add_option("--dt", opt->dt_s, "Fixed step [s]");
+  sub->add_option("--integrator", opt->integrator,
+                  "euler | semi-implicit-euler | heun | rk4 | linear-implicit-euler | ros2");
+  sub->add_option("--scalar", opt->scalar, "double | float | fixed (q16.16)")
+      ->check(CLI::IsMember({"double", "float", "fixed"}));
+  sub->add_option("--csv", opt->csv, "Write the trajectory as CSV (t,x1,v1,x2,v2,F1,F2); '-' for stdout");
+  sub->add_option("--every", opt->every, "Write every N-th step to the CSV")->check(CLI::PositiveNumber);
+  sub->add_flag("--json", opt->json, "Print a JSON summary instead of the text one");
+
+  return [opt]() -> int {
+    const Options& o = *opt;
+    cvt::Method m{};
+    if (!cvt::parse_method(o.integrator.c_str(), m))
+      throw cvtcli::UsageError{"--integrator: unknown method '" + o.integrator + "'"};
+    if (!(o.t_end_s > 0) || !std::isfinite(o.t_end_s)) throw cvtcli::UsageError{"--t-end: must be > 0"};
+    if (!(o.dt_s > 0) || !std::isfinite(o.dt_s) || o.dt_s > o.t_end_s)
+      throw cvtcli::UsageError{"--dt: must be > 0 and <= --t-end"};
+    if (o.t_end_s / o.dt_s > 1e9) throw cvtcli::UsageError{"--t-end/--dt: more than 1e9 steps"};
+    if (o.scalar == "fixed" && o.dt_s < 4.0 / 65536.0)
+      throw cvtcli::UsageError{"--dt: q16.16 cannot represent steps below 6.1e-5 s to 2 % (use --dt >= 1e-3)"};
+    const std::vector<double> x0 = cvtcli::parse_list(o.x0, 4, "--x0");
+    if (o.scalar == "fixed")
+      for (double v : x0)
+        if (std::fabs(v) > 1000.0) throw cvtcli::UsageError{"--x0: |value| > 1000 does not fit q16.16 with margin"};
+    const auto fr = o.friction == "coulomb" ? cvt::friction_presets::oscillator_coulomb<double>()
+                                             : cvt::friction_presets::oscillator_stribeck<double>();
+    std::FILE* csv = o.csv.empty() ? nullptr : cvtcli::open_output(o.csv);
+    Summary s;
+    if (o.scalar == "double") s = run<double>(o, fr, x0.data(), csv);
+    else if (o.scalar == "float") s = run<float>(o, fr, x0.data(), csv);
+    else s = run<cvt::q16_16>(o, fr, x0.data(), csv);
+    cvtcli::close_output(csv);
+
+    const double x_eq = cvt::StickSlipOscillator<double>(cvt::OscillatorParams<double>::seed_section3(fr))
+                            .sliding_equilibrium_m();
+    const char* behaviour = !s.finite ? "diverged" : s.settled ? "settled" : s.period_s > 0 ? "oscillating" : "moving";
+    if (o.json) {
+      nlohmann::json j;
+      j["subcommand"] = "oscillator";
+      j["friction"] = o.friction;
+      j["integrator"] = o.integrator;
+      j["scalar"] = o.scalar;
+      j["dt_s"] = o.dt_s;
+      j["t_end_s"] = o.t_end_s;
+      j["steps"] = s.steps;
+      j["final_state"] = {{"x1", s.final_state[0]}, {"v1", s.final_state[1]}, {"x2", s.final_state[2]},
+                          {"v2", s.final_state[3]}};
+      j["finite"] = s.finite;
+      j["settled"] = s.settled;
+      j["behaviour"] = behaviour;
+      j["sliding_equilibrium_m"] = x_eq;
+      j["last_window"] = {{"window_s", o.settle_window_s}, {"x1_peak_to_peak_m", s.x1_max - s.x1_min},
+                          {"max_abs_velocity_m_s", s.v_abs_max}};
+      j["period_s"] = s.period_s > 0 ? nlohmann::json(s.period_s) : nlohmann::json(nullptr);
+      j["run_time_s"] = s.wall_s;
+      j["ns_per_step"] = s.steps > 0 ? 1e9 * s.wall_s / static_cast<double>(s.steps) : 0.0;
+      cvtcli::print_json(j);
+    } else {
+      std::printf("Stick-slip oscillator (seed Eq. 9), %s friction, %s, dt = %g s, %s\n", o.friction.c_str(),
+                  o.integrator.c_str(), o.dt_s, o.scalar.c_str());
+      std::printf("  start      [x1 v1 x2 v2] = [%g %g %g %g]\n", x0[0], x0[1], x0[2], x0[3]);
+      std::printf("  after %g s [x1 v1 x2 v2] = [%.6f %.6f %.6f %.6f]\n", o.t_end_s, s.final_state[0],
+                  s.final_state[1], s.final_state[2], s.final_state[3]);
+      std::printf("  behaviour: %s", behaviour);
+      if (s.settled) std::printf(" (sliding equilibrium x* = %.6f m)", x_eq);
+      if (s.period_s > 0)
+        std::printf(" (period %.4f s, x1 peak-to-peak %.4f m over the last %g s)", s.period_s, s.x1_max - s.x1_min,
+                    o.settle_window_s);
+      std::printf("\n  %ld steps in %.3f s wall (%.0f ns/step)\n", s.steps, s.wall_s,
+                  s.steps > 0 ? 1e9 * s.wall_s / static_cast<double>(s.steps) : 0.0);
+    }
+    return s.finite ? 0 : 1;
+  };
+}
+
+const bool registered = cvtcli::add_registrar(&register_oscillator);
+
+}  // namespace

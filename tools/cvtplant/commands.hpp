@@ -1,0 +1,31 @@
+#pragma once
+// Each subcommand lives in its own cmd_<name>.cpp and registers itself here.
+// Conventions (docs/cli.md): exit 0 = ok, 1 = the run failed (e.g. the plant
+// faulted), 2 = bad input (flags, files, values) with a one-line message on
+// stderr that starts with "cvtplant <subcommand>: error: ".
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <string>
+
+namespace cvtcli {
+
+// Thrown by subcommand bodies for bad input discovered after flag parsing
+// (unreadable file, NaN in a CSV, ...). main() maps it to exit code 2.
+struct UsageError {
+  std::string message;
+};
+// Thrown when the input was fine but the run could not complete (exit 1).
+struct RunError {
+  std::string message;
+};
+
+// A subcommand body; returns the process exit code.
+using Action = std::function<int()>;
+
+// Registers a subcommand on `app` and returns the action to run if it was
+// selected. Each cmd_*.cpp defines one of these and adds it to the table in
+// main.cpp.
+using Registrar = Action (*)(CLI::App& app);
+
+}  // namespace cvtcli
