@@ -54,6 +54,14 @@ def flit(d):
     return s + "f"
 
 
+def dlit(d):
+    """Double literal for a Decimal."""
+    s = format(Decimal(d).normalize(), "f")
+    if "." not in s:
+        s += ".0"
+    return s
+
+
 def cint(v):
     v = int(v)
     if v < 0:
@@ -173,6 +181,16 @@ class Sig:
             return ("[%d, %d] %s" % (self.raw_min, self.raw_max, self.unit)).rstrip()
         return ""
 
+    def exact_inverse(self):
+        """1/factor when it is an integer a float holds exactly (0.02 -> 50).
+        Scaling by that exact inverse rounds once, against the true DBC
+        factor; using the float nearest 0.02 would add its representation
+        error to every value (docs/can.md#rounding)."""
+        inv = Decimal(1) / self.factor
+        if inv == inv.to_integral_value() and 0 < inv <= (1 << 24):
+            return inv
+        return None
+
     def raw_getter(self):
         fn = "get_signed" if self.signed else "get_unsigned"
         return "bits::%s(w, %d, %d)" % (fn, self.start, self.len)
@@ -198,11 +216,14 @@ class Sig:
         out = []
         if self.kind == "float":
             scaled = f if self.offset == 0 else "(%s - %s)" % (f, flit(self.offset))
+            inv = self.exact_inverse()
+            quotient = ("%s * %s" % (scaled, flit(inv))) if inv is not None else (
+                "%s / %s" % (scaled, flit(self.factor)))
             out += [
                 "  if (!bits::is_finite(%s)) return CodecStatus::NotFinite;" % f,
                 "  if (!(%s >= %s && %s <= %s)) return CodecStatus::OutOfRange;" % (f, flit(self.min), f, flit(self.max)),
                 "  {",
-                "    int32_t raw = bits::round_to_i32(%s / %s);" % (scaled, flit(self.factor)),
+                "    int32_t raw = bits::round_to_i32(%s);" % quotient,
                 "    // Only a value within half an LSB of a range end can round outside",
                 "    // the raw interval; the nearest in-range code is the right answer.",
                 "    if (raw < %s) raw = %s;" % (cint(self.raw_min), cint(self.raw_min)),
@@ -244,7 +265,9 @@ class Sig:
             if self.kind == "int":
                 out.append("    %s = static_cast<%s>(raw);" % (t, self.ctype))
             else:
-                expr = "static_cast<float>(static_cast<int32_t>(raw)) * %s" % flit(self.factor)
+                inv = self.exact_inverse()
+                expr = ("static_cast<float>(static_cast<int32_t>(raw)) / %s" % flit(inv)) if inv is not None else (
+                    "static_cast<float>(static_cast<int32_t>(raw)) * %s" % flit(self.factor))
                 if self.offset != 0:
                     expr += " + %s" % flit(self.offset)
                 out.append("    %s = %s;" % (t, expr))
@@ -333,6 +356,7 @@ def generate(path):
     w('#include "cvtplant/can/codec_status.hpp"')
     w('#include "cvtplant/can/e2e.hpp"')
     w('#include "cvtplant/can/frame.hpp"')
+    w('#include "cvtplant/can/signal_info.hpp"')
     w("")
     w("namespace cvt::can {")
     w("")
@@ -373,11 +397,29 @@ def generate(path):
         w("  static constexpr uint16_t kCycleTime_ms = %d;" % m.cycle_ms)
         w("  static constexpr uint16_t kRxTimeout_ms = %d;" % m.timeout_ms)
         w('  static constexpr const char* kName = "%s";' % m.name)
+        mask = 0
+        for sg in m.signals:
+            mask |= ((1 << sg.len) - 1) << sg.start
+        w("  // Payload bits carrying signals (E2E header excluded).")
+        w("  static constexpr uint64_t kSignalMask = 0x%016Xull;" % mask)
         w("")
         for s in m.signals:
             c = s.comment()
             w("  %s %s = %s;%s" % (s.cpp_type(), s.name, s.cpp_value(raw=s.init_raw),
                                     ("  // " + c) if c else ""))
+        w("")
+        w("  static constexpr SignalInfo kSignals[%d] = {" % len(m.signals))
+        kinds = {"float": "Float", "int": "Integer", "enum": "Enum", "bool": "Bool"}
+        for s in m.signals:
+            w('      {"%s", "%s", SignalKind::%s, %s, %s, %s},' % (
+                s.name, s.unit, kinds[s.kind], dlit(s.min), dlit(s.max), dlit(s.factor)))
+        w("  };")
+        for const in ("", " const"):
+            w("  template <class F>")
+            w("  constexpr void visit(F&& f)%s {" % const)
+            for i, s in enumerate(m.signals):
+                w("    f(kSignals[%d], %s);" % (i, s.name))
+            w("  }")
         w("};")
         w("")
         w("// Signals only: byte 0 and the low nibble of byte 1 are left 0 for E2E.")
@@ -461,6 +503,22 @@ def generate(path):
         w("    }")
     w("  }")
     w("  return CodecStatus::UnknownId;")
+    w("}")
+    w("")
+    w("// Calls f(Msg{}) once per message type, in CAN ID order.")
+    w("template <class F>")
+    w("void for_each_message_type(F&& f) {")
+    for m in msgs:
+        w("  f(%s{});" % m.name)
+    w("}")
+    w("")
+    w("// Calls f(const Msg&) with the member selected by `which`.")
+    w("template <class F>")
+    w("void visit_any(const AnyMessage& a, F&& f) {")
+    w("  switch (a.which) {")
+    for m in msgs:
+        w("    case MessageId::%s: f(a.%s); break;" % (m.name, m.member))
+    w("  }")
     w("}")
     w("")
     w("// One E2E receiver per message: the full receive pipeline of channel.hpp")

@@ -48,11 +48,17 @@ AmiResult average_mutual_information(const std::vector<double>& x, int max_lag, 
     for (std::size_t i = 0; i + lag < n; ++i) c += (x[i] - m) * (x[i + lag] - m);
     r.acf.push_back(c / c0);
   }
-  for (int lag = 1; lag < max_lag; ++lag)
-    if (r.ami[lag] < r.ami[lag - 1] && r.ami[lag] <= r.ami[lag + 1]) {
-      r.tau_ami = lag;
-      break;
-    }
+  // A minimum counts if it is the lowest value over the next max(2, lag/2)
+  // lags (histogram MI is jagged) and above twice the estimator's bias
+  // (B-1)^2/(2N) (a decorrelated series only has noise minima).
+  const double bias = static_cast<double>((bins - 1) * (bins - 1)) / (2.0 * static_cast<double>(n));
+  for (int lag = 1; lag < max_lag && r.tau_ami == 0; ++lag) {
+    if (!(r.ami[lag] < r.ami[lag - 1]) || r.ami[lag] <= 2 * bias) continue;
+    const int ahead = std::min(max_lag, lag + std::max(2, lag / 2));
+    bool lowest = true;
+    for (int j = lag + 1; j <= ahead; ++j) lowest = lowest && r.ami[lag] <= r.ami[j];
+    if (lowest && ahead > lag) r.tau_ami = lag;
+  }
   for (int lag = 1; lag <= max_lag; ++lag)
     if (r.acf[lag] <= 0) {
       r.tau_acf_zero = lag;

@@ -124,7 +124,7 @@ RqaResult finish(const LineCounter& lc, std::uint64_t rec_upper, const Embedding
 void check(const Embedding& e, const RqaOptions& opt) {
   if (opt.theiler < 0) throw InputError("rqa: Theiler window must be >= 0");
   if (opt.lmin < 1 || opt.vmin < 1) throw InputError("rqa: lmin and vmin must be >= 1");
-  if (e.n < static_cast<std::size_t>(opt.theiler) + 10) throw InputError("rqa: too few points");
+  if (e.n < static_cast<std::size_t>(opt.theiler) + 2) throw InputError("rqa: too few points for the Theiler window");
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include "cvtplant/can/codec_status.hpp"
 #include "cvtplant/can/e2e.hpp"
 #include "cvtplant/can/frame.hpp"
+#include "cvtplant/can/signal_info.hpp"
 
 namespace cvt::can {
 
@@ -131,11 +132,34 @@ struct SimCtrl {
   static constexpr uint16_t kCycleTime_ms = 0;
   static constexpr uint16_t kRxTimeout_ms = 0;
   static constexpr const char* kName = "SimCtrl";
+  // Payload bits carrying signals (E2E header excluded).
+  static constexpr uint64_t kSignalMask = 0x00000FFFFFFFF000ull;
 
   SimRequest sim_request = SimRequest::None;
   SceneId scene_id = SceneId::Keep;
   uint16_t step_count = 0;  // [0, 65535] steps
   uint8_t step_seq = 0;  // [0, 15]
+
+  static constexpr SignalInfo kSignals[4] = {
+      {"sim_request", "", SignalKind::Enum, 0.0, 4.0, 1.0},
+      {"scene_id", "", SignalKind::Enum, 0.0, 7.0, 1.0},
+      {"step_count", "steps", SignalKind::Integer, 0.0, 65535.0, 1.0},
+      {"step_seq", "", SignalKind::Integer, 0.0, 15.0, 1.0},
+  };
+  template <class F>
+  constexpr void visit(F&& f) {
+    f(kSignals[0], sim_request);
+    f(kSignals[1], scene_id);
+    f(kSignals[2], step_count);
+    f(kSignals[3], step_seq);
+  }
+  template <class F>
+  constexpr void visit(F&& f) const {
+    f(kSignals[0], sim_request);
+    f(kSignals[1], scene_id);
+    f(kSignals[2], step_count);
+    f(kSignals[3], step_seq);
+  }
 };
 
 // Signals only: byte 0 and the low nibble of byte 1 are left 0 for E2E.
@@ -195,9 +219,26 @@ struct CtrlCmd {
   static constexpr uint16_t kCycleTime_ms = 10;
   static constexpr uint16_t kRxTimeout_ms = 50;
   static constexpr const char* kName = "CtrlCmd";
+  // Payload bits carrying signals (E2E header excluded).
+  static constexpr uint64_t kSignalMask = 0x0000FFFFFFFF0000ull;
 
   float clamp_force_cmd_N = 0.0f;  // [0, 60000] N, LSB 1
   float driver_torque_req_Nm = 0.0f;  // [-600, 600] Nm, LSB 0.02
+
+  static constexpr SignalInfo kSignals[2] = {
+      {"clamp_force_cmd_N", "N", SignalKind::Float, 0.0, 60000.0, 1.0},
+      {"driver_torque_req_Nm", "Nm", SignalKind::Float, -600.0, 600.0, 0.02},
+  };
+  template <class F>
+  constexpr void visit(F&& f) {
+    f(kSignals[0], clamp_force_cmd_N);
+    f(kSignals[1], driver_torque_req_Nm);
+  }
+  template <class F>
+  constexpr void visit(F&& f) const {
+    f(kSignals[0], clamp_force_cmd_N);
+    f(kSignals[1], driver_torque_req_Nm);
+  }
 };
 
 // Signals only: byte 0 and the low nibble of byte 1 are left 0 for E2E.
@@ -206,7 +247,7 @@ inline CodecStatus pack(const CtrlCmd& m, uint8_t (&payload)[8]) noexcept {
   if (!bits::is_finite(m.clamp_force_cmd_N)) return CodecStatus::NotFinite;
   if (!(m.clamp_force_cmd_N >= 0.0f && m.clamp_force_cmd_N <= 60000.0f)) return CodecStatus::OutOfRange;
   {
-    int32_t raw = bits::round_to_i32(m.clamp_force_cmd_N / 1.0f);
+    int32_t raw = bits::round_to_i32(m.clamp_force_cmd_N * 1.0f);
     // Only a value within half an LSB of a range end can round outside
     // the raw interval; the nearest in-range code is the right answer.
     if (raw < 0) raw = 0;
@@ -216,7 +257,7 @@ inline CodecStatus pack(const CtrlCmd& m, uint8_t (&payload)[8]) noexcept {
   if (!bits::is_finite(m.driver_torque_req_Nm)) return CodecStatus::NotFinite;
   if (!(m.driver_torque_req_Nm >= -600.0f && m.driver_torque_req_Nm <= 600.0f)) return CodecStatus::OutOfRange;
   {
-    int32_t raw = bits::round_to_i32(m.driver_torque_req_Nm / 0.02f);
+    int32_t raw = bits::round_to_i32(m.driver_torque_req_Nm * 50.0f);
     // Only a value within half an LSB of a range end can round outside
     // the raw interval; the nearest in-range code is the right answer.
     if (raw < (-30000)) raw = (-30000);
@@ -234,12 +275,12 @@ inline CodecStatus unpack(const uint8_t (&payload)[8], CtrlCmd& out) noexcept {
   {
     const int64_t raw = static_cast<int64_t>(bits::get_unsigned(w, 16, 16));
     if (raw > 60000) return CodecStatus::OutOfRange;
-    m.clamp_force_cmd_N = static_cast<float>(static_cast<int32_t>(raw)) * 1.0f;
+    m.clamp_force_cmd_N = static_cast<float>(static_cast<int32_t>(raw)) / 1.0f;
   }
   {
     const int64_t raw = static_cast<int64_t>(bits::get_signed(w, 32, 16));
     if (raw < (-30000) || raw > 30000) return CodecStatus::OutOfRange;
-    m.driver_torque_req_Nm = static_cast<float>(static_cast<int32_t>(raw)) * 0.02f;
+    m.driver_torque_req_Nm = static_cast<float>(static_cast<int32_t>(raw)) / 50.0f;
   }
   out = m;
   return CodecStatus::Ok;
@@ -262,9 +303,26 @@ struct HarnessLoad {
   static constexpr uint16_t kCycleTime_ms = 10;
   static constexpr uint16_t kRxTimeout_ms = 50;
   static constexpr const char* kName = "HarnessLoad";
+  // Payload bits carrying signals (E2E header excluded).
+  static constexpr uint64_t kSignalMask = 0x00000000FFFF1000ull;
 
   bool load_override_active = false;
   float load_torque_override_Nm = 0.0f;  // [-600, 600] Nm, LSB 0.02
+
+  static constexpr SignalInfo kSignals[2] = {
+      {"load_override_active", "", SignalKind::Bool, 0.0, 1.0, 1.0},
+      {"load_torque_override_Nm", "Nm", SignalKind::Float, -600.0, 600.0, 0.02},
+  };
+  template <class F>
+  constexpr void visit(F&& f) {
+    f(kSignals[0], load_override_active);
+    f(kSignals[1], load_torque_override_Nm);
+  }
+  template <class F>
+  constexpr void visit(F&& f) const {
+    f(kSignals[0], load_override_active);
+    f(kSignals[1], load_torque_override_Nm);
+  }
 };
 
 // Signals only: byte 0 and the low nibble of byte 1 are left 0 for E2E.
@@ -274,7 +332,7 @@ inline CodecStatus pack(const HarnessLoad& m, uint8_t (&payload)[8]) noexcept {
   if (!bits::is_finite(m.load_torque_override_Nm)) return CodecStatus::NotFinite;
   if (!(m.load_torque_override_Nm >= -600.0f && m.load_torque_override_Nm <= 600.0f)) return CodecStatus::OutOfRange;
   {
-    int32_t raw = bits::round_to_i32(m.load_torque_override_Nm / 0.02f);
+    int32_t raw = bits::round_to_i32(m.load_torque_override_Nm * 50.0f);
     // Only a value within half an LSB of a range end can round outside
     // the raw interval; the nearest in-range code is the right answer.
     if (raw < (-30000)) raw = (-30000);
@@ -293,7 +351,7 @@ inline CodecStatus unpack(const uint8_t (&payload)[8], HarnessLoad& out) noexcep
   {
     const int64_t raw = static_cast<int64_t>(bits::get_signed(w, 16, 16));
     if (raw < (-30000) || raw > 30000) return CodecStatus::OutOfRange;
-    m.load_torque_override_Nm = static_cast<float>(static_cast<int32_t>(raw)) * 0.02f;
+    m.load_torque_override_Nm = static_cast<float>(static_cast<int32_t>(raw)) / 50.0f;
   }
   out = m;
   return CodecStatus::Ok;
@@ -316,11 +374,34 @@ struct PlantSpeeds {
   static constexpr uint16_t kCycleTime_ms = 10;
   static constexpr uint16_t kRxTimeout_ms = 50;
   static constexpr const char* kName = "PlantSpeeds";
+  // Payload bits carrying signals (E2E header excluded).
+  static constexpr uint64_t kSignalMask = 0xFFFFFFFFFFFFF000ull;
 
   uint8_t sample_tag = 0;  // [0, 15]
   float omega_driver_rad_s = 0.0f;  // [-650, 650] rad/s, LSB 0.02
   float omega_driven_rad_s = 0.0f;  // [-650, 650] rad/s, LSB 0.02
   float torque_transmitted_Nm = 0.0f;  // [-600, 600] Nm, LSB 0.02
+
+  static constexpr SignalInfo kSignals[4] = {
+      {"sample_tag", "", SignalKind::Integer, 0.0, 15.0, 1.0},
+      {"omega_driver_rad_s", "rad/s", SignalKind::Float, -650.0, 650.0, 0.02},
+      {"omega_driven_rad_s", "rad/s", SignalKind::Float, -650.0, 650.0, 0.02},
+      {"torque_transmitted_Nm", "Nm", SignalKind::Float, -600.0, 600.0, 0.02},
+  };
+  template <class F>
+  constexpr void visit(F&& f) {
+    f(kSignals[0], sample_tag);
+    f(kSignals[1], omega_driver_rad_s);
+    f(kSignals[2], omega_driven_rad_s);
+    f(kSignals[3], torque_transmitted_Nm);
+  }
+  template <class F>
+  constexpr void visit(F&& f) const {
+    f(kSignals[0], sample_tag);
+    f(kSignals[1], omega_driver_rad_s);
+    f(kSignals[2], omega_driven_rad_s);
+    f(kSignals[3], torque_transmitted_Nm);
+  }
 };
 
 // Signals only: byte 0 and the low nibble of byte 1 are left 0 for E2E.
@@ -331,7 +412,7 @@ inline CodecStatus pack(const PlantSpeeds& m, uint8_t (&payload)[8]) noexcept {
   if (!bits::is_finite(m.omega_driver_rad_s)) return CodecStatus::NotFinite;
   if (!(m.omega_driver_rad_s >= -650.0f && m.omega_driver_rad_s <= 650.0f)) return CodecStatus::OutOfRange;
   {
-    int32_t raw = bits::round_to_i32(m.omega_driver_rad_s / 0.02f);
+    int32_t raw = bits::round_to_i32(m.omega_driver_rad_s * 50.0f);
     // Only a value within half an LSB of a range end can round outside
     // the raw interval; the nearest in-range code is the right answer.
     if (raw < (-32500)) raw = (-32500);
@@ -341,7 +422,7 @@ inline CodecStatus pack(const PlantSpeeds& m, uint8_t (&payload)[8]) noexcept {
   if (!bits::is_finite(m.omega_driven_rad_s)) return CodecStatus::NotFinite;
   if (!(m.omega_driven_rad_s >= -650.0f && m.omega_driven_rad_s <= 650.0f)) return CodecStatus::OutOfRange;
   {
-    int32_t raw = bits::round_to_i32(m.omega_driven_rad_s / 0.02f);
+    int32_t raw = bits::round_to_i32(m.omega_driven_rad_s * 50.0f);
     // Only a value within half an LSB of a range end can round outside
     // the raw interval; the nearest in-range code is the right answer.
     if (raw < (-32500)) raw = (-32500);
@@ -351,7 +432,7 @@ inline CodecStatus pack(const PlantSpeeds& m, uint8_t (&payload)[8]) noexcept {
   if (!bits::is_finite(m.torque_transmitted_Nm)) return CodecStatus::NotFinite;
   if (!(m.torque_transmitted_Nm >= -600.0f && m.torque_transmitted_Nm <= 600.0f)) return CodecStatus::OutOfRange;
   {
-    int32_t raw = bits::round_to_i32(m.torque_transmitted_Nm / 0.02f);
+    int32_t raw = bits::round_to_i32(m.torque_transmitted_Nm * 50.0f);
     // Only a value within half an LSB of a range end can round outside
     // the raw interval; the nearest in-range code is the right answer.
     if (raw < (-30000)) raw = (-30000);
@@ -373,17 +454,17 @@ inline CodecStatus unpack(const uint8_t (&payload)[8], PlantSpeeds& out) noexcep
   {
     const int64_t raw = static_cast<int64_t>(bits::get_signed(w, 16, 16));
     if (raw < (-32500) || raw > 32500) return CodecStatus::OutOfRange;
-    m.omega_driver_rad_s = static_cast<float>(static_cast<int32_t>(raw)) * 0.02f;
+    m.omega_driver_rad_s = static_cast<float>(static_cast<int32_t>(raw)) / 50.0f;
   }
   {
     const int64_t raw = static_cast<int64_t>(bits::get_signed(w, 32, 16));
     if (raw < (-32500) || raw > 32500) return CodecStatus::OutOfRange;
-    m.omega_driven_rad_s = static_cast<float>(static_cast<int32_t>(raw)) * 0.02f;
+    m.omega_driven_rad_s = static_cast<float>(static_cast<int32_t>(raw)) / 50.0f;
   }
   {
     const int64_t raw = static_cast<int64_t>(bits::get_signed(w, 48, 16));
     if (raw < (-30000) || raw > 30000) return CodecStatus::OutOfRange;
-    m.torque_transmitted_Nm = static_cast<float>(static_cast<int32_t>(raw)) * 0.02f;
+    m.torque_transmitted_Nm = static_cast<float>(static_cast<int32_t>(raw)) / 50.0f;
   }
   out = m;
   return CodecStatus::Ok;
@@ -404,11 +485,34 @@ struct PlantRatio {
   static constexpr uint16_t kCycleTime_ms = 10;
   static constexpr uint16_t kRxTimeout_ms = 50;
   static constexpr const char* kName = "PlantRatio";
+  // Payload bits carrying signals (E2E header excluded).
+  static constexpr uint64_t kSignalMask = 0xFFFFFFFFFFFFF000ull;
 
   uint8_t sample_tag = 0;  // [0, 15]
   float speed_ratio = 0.0f;  // [0, 6.5] 1, LSB 0.0001
   float geometric_ratio = 0.0f;  // [0, 6.5] 1, LSB 0.0001
   float slip = 0.0f;  // [-3.2768, 3.2767] 1, LSB 0.0001
+
+  static constexpr SignalInfo kSignals[4] = {
+      {"sample_tag", "", SignalKind::Integer, 0.0, 15.0, 1.0},
+      {"speed_ratio", "", SignalKind::Float, 0.0, 6.5, 0.0001},
+      {"geometric_ratio", "", SignalKind::Float, 0.0, 6.5, 0.0001},
+      {"slip", "", SignalKind::Float, -3.2768, 3.2767, 0.0001},
+  };
+  template <class F>
+  constexpr void visit(F&& f) {
+    f(kSignals[0], sample_tag);
+    f(kSignals[1], speed_ratio);
+    f(kSignals[2], geometric_ratio);
+    f(kSignals[3], slip);
+  }
+  template <class F>
+  constexpr void visit(F&& f) const {
+    f(kSignals[0], sample_tag);
+    f(kSignals[1], speed_ratio);
+    f(kSignals[2], geometric_ratio);
+    f(kSignals[3], slip);
+  }
 };
 
 // Signals only: byte 0 and the low nibble of byte 1 are left 0 for E2E.
@@ -419,7 +523,7 @@ inline CodecStatus pack(const PlantRatio& m, uint8_t (&payload)[8]) noexcept {
   if (!bits::is_finite(m.speed_ratio)) return CodecStatus::NotFinite;
   if (!(m.speed_ratio >= 0.0f && m.speed_ratio <= 6.5f)) return CodecStatus::OutOfRange;
   {
-    int32_t raw = bits::round_to_i32(m.speed_ratio / 0.0001f);
+    int32_t raw = bits::round_to_i32(m.speed_ratio * 10000.0f);
     // Only a value within half an LSB of a range end can round outside
     // the raw interval; the nearest in-range code is the right answer.
     if (raw < 0) raw = 0;
@@ -429,7 +533,7 @@ inline CodecStatus pack(const PlantRatio& m, uint8_t (&payload)[8]) noexcept {
   if (!bits::is_finite(m.geometric_ratio)) return CodecStatus::NotFinite;
   if (!(m.geometric_ratio >= 0.0f && m.geometric_ratio <= 6.5f)) return CodecStatus::OutOfRange;
   {
-    int32_t raw = bits::round_to_i32(m.geometric_ratio / 0.0001f);
+    int32_t raw = bits::round_to_i32(m.geometric_ratio * 10000.0f);
     // Only a value within half an LSB of a range end can round outside
     // the raw interval; the nearest in-range code is the right answer.
     if (raw < 0) raw = 0;
@@ -439,7 +543,7 @@ inline CodecStatus pack(const PlantRatio& m, uint8_t (&payload)[8]) noexcept {
   if (!bits::is_finite(m.slip)) return CodecStatus::NotFinite;
   if (!(m.slip >= -3.2768f && m.slip <= 3.2767f)) return CodecStatus::OutOfRange;
   {
-    int32_t raw = bits::round_to_i32(m.slip / 0.0001f);
+    int32_t raw = bits::round_to_i32(m.slip * 10000.0f);
     // Only a value within half an LSB of a range end can round outside
     // the raw interval; the nearest in-range code is the right answer.
     if (raw < (-32768)) raw = (-32768);
@@ -461,16 +565,16 @@ inline CodecStatus unpack(const uint8_t (&payload)[8], PlantRatio& out) noexcept
   {
     const int64_t raw = static_cast<int64_t>(bits::get_unsigned(w, 16, 16));
     if (raw > 65000) return CodecStatus::OutOfRange;
-    m.speed_ratio = static_cast<float>(static_cast<int32_t>(raw)) * 0.0001f;
+    m.speed_ratio = static_cast<float>(static_cast<int32_t>(raw)) / 10000.0f;
   }
   {
     const int64_t raw = static_cast<int64_t>(bits::get_unsigned(w, 32, 16));
     if (raw > 65000) return CodecStatus::OutOfRange;
-    m.geometric_ratio = static_cast<float>(static_cast<int32_t>(raw)) * 0.0001f;
+    m.geometric_ratio = static_cast<float>(static_cast<int32_t>(raw)) / 10000.0f;
   }
   {
     const int64_t raw = static_cast<int64_t>(bits::get_signed(w, 48, 16));
-    m.slip = static_cast<float>(static_cast<int32_t>(raw)) * 0.0001f;
+    m.slip = static_cast<float>(static_cast<int32_t>(raw)) / 10000.0f;
   }
   out = m;
   return CodecStatus::Ok;
@@ -491,10 +595,30 @@ struct PlantForces {
   static constexpr uint16_t kCycleTime_ms = 10;
   static constexpr uint16_t kRxTimeout_ms = 50;
   static constexpr const char* kName = "PlantForces";
+  // Payload bits carrying signals (E2E header excluded).
+  static constexpr uint64_t kSignalMask = 0x0000FFFFFFFFF000ull;
 
   uint8_t sample_tag = 0;  // [0, 15]
   float driver_axial_force_N = 0.0f;  // [0, 65535] N, LSB 1
   float driven_axial_force_N = 0.0f;  // [0, 65535] N, LSB 1
+
+  static constexpr SignalInfo kSignals[3] = {
+      {"sample_tag", "", SignalKind::Integer, 0.0, 15.0, 1.0},
+      {"driver_axial_force_N", "N", SignalKind::Float, 0.0, 65535.0, 1.0},
+      {"driven_axial_force_N", "N", SignalKind::Float, 0.0, 65535.0, 1.0},
+  };
+  template <class F>
+  constexpr void visit(F&& f) {
+    f(kSignals[0], sample_tag);
+    f(kSignals[1], driver_axial_force_N);
+    f(kSignals[2], driven_axial_force_N);
+  }
+  template <class F>
+  constexpr void visit(F&& f) const {
+    f(kSignals[0], sample_tag);
+    f(kSignals[1], driver_axial_force_N);
+    f(kSignals[2], driven_axial_force_N);
+  }
 };
 
 // Signals only: byte 0 and the low nibble of byte 1 are left 0 for E2E.
@@ -505,7 +629,7 @@ inline CodecStatus pack(const PlantForces& m, uint8_t (&payload)[8]) noexcept {
   if (!bits::is_finite(m.driver_axial_force_N)) return CodecStatus::NotFinite;
   if (!(m.driver_axial_force_N >= 0.0f && m.driver_axial_force_N <= 65535.0f)) return CodecStatus::OutOfRange;
   {
-    int32_t raw = bits::round_to_i32(m.driver_axial_force_N / 1.0f);
+    int32_t raw = bits::round_to_i32(m.driver_axial_force_N * 1.0f);
     // Only a value within half an LSB of a range end can round outside
     // the raw interval; the nearest in-range code is the right answer.
     if (raw < 0) raw = 0;
@@ -515,7 +639,7 @@ inline CodecStatus pack(const PlantForces& m, uint8_t (&payload)[8]) noexcept {
   if (!bits::is_finite(m.driven_axial_force_N)) return CodecStatus::NotFinite;
   if (!(m.driven_axial_force_N >= 0.0f && m.driven_axial_force_N <= 65535.0f)) return CodecStatus::OutOfRange;
   {
-    int32_t raw = bits::round_to_i32(m.driven_axial_force_N / 1.0f);
+    int32_t raw = bits::round_to_i32(m.driven_axial_force_N * 1.0f);
     // Only a value within half an LSB of a range end can round outside
     // the raw interval; the nearest in-range code is the right answer.
     if (raw < 0) raw = 0;
@@ -536,11 +660,11 @@ inline CodecStatus unpack(const uint8_t (&payload)[8], PlantForces& out) noexcep
   }
   {
     const int64_t raw = static_cast<int64_t>(bits::get_unsigned(w, 16, 16));
-    m.driver_axial_force_N = static_cast<float>(static_cast<int32_t>(raw)) * 1.0f;
+    m.driver_axial_force_N = static_cast<float>(static_cast<int32_t>(raw)) / 1.0f;
   }
   {
     const int64_t raw = static_cast<int64_t>(bits::get_unsigned(w, 32, 16));
-    m.driven_axial_force_N = static_cast<float>(static_cast<int32_t>(raw)) * 1.0f;
+    m.driven_axial_force_N = static_cast<float>(static_cast<int32_t>(raw)) / 1.0f;
   }
   out = m;
   return CodecStatus::Ok;
@@ -561,6 +685,8 @@ struct PlantStatus {
   static constexpr uint16_t kCycleTime_ms = 100;
   static constexpr uint16_t kRxTimeout_ms = 500;
   static constexpr const char* kName = "PlantStatus";
+  // Payload bits carrying signals (E2E header excluded).
+  static constexpr uint64_t kSignalMask = 0xFF7FFFFFFFFFF000ull;
 
   PlantMode plant_mode = PlantMode::Init;
   uint32_t sim_time_us = 0;  // [0, 4294967295] us
@@ -573,6 +699,48 @@ struct PlantStatus {
   bool fault_rx_rejected = false;
   uint8_t step_seq_ack = 0;  // [0, 15]
   uint8_t sample_tag = 0;  // [0, 15]
+
+  static constexpr SignalInfo kSignals[11] = {
+      {"plant_mode", "", SignalKind::Enum, 0.0, 4.0, 1.0},
+      {"sim_time_us", "us", SignalKind::Integer, 0.0, 4294967295.0, 1.0},
+      {"fault_watchdog", "", SignalKind::Bool, 0.0, 1.0, 1.0},
+      {"fault_cmd_timeout", "", SignalKind::Bool, 0.0, 1.0, 1.0},
+      {"fault_load_timeout", "", SignalKind::Bool, 0.0, 1.0, 1.0},
+      {"fault_rt_overrun", "", SignalKind::Bool, 0.0, 1.0, 1.0},
+      {"fault_bus_error", "", SignalKind::Bool, 0.0, 1.0, 1.0},
+      {"fault_scene", "", SignalKind::Bool, 0.0, 1.0, 1.0},
+      {"fault_rx_rejected", "", SignalKind::Bool, 0.0, 1.0, 1.0},
+      {"step_seq_ack", "", SignalKind::Integer, 0.0, 15.0, 1.0},
+      {"sample_tag", "", SignalKind::Integer, 0.0, 15.0, 1.0},
+  };
+  template <class F>
+  constexpr void visit(F&& f) {
+    f(kSignals[0], plant_mode);
+    f(kSignals[1], sim_time_us);
+    f(kSignals[2], fault_watchdog);
+    f(kSignals[3], fault_cmd_timeout);
+    f(kSignals[4], fault_load_timeout);
+    f(kSignals[5], fault_rt_overrun);
+    f(kSignals[6], fault_bus_error);
+    f(kSignals[7], fault_scene);
+    f(kSignals[8], fault_rx_rejected);
+    f(kSignals[9], step_seq_ack);
+    f(kSignals[10], sample_tag);
+  }
+  template <class F>
+  constexpr void visit(F&& f) const {
+    f(kSignals[0], plant_mode);
+    f(kSignals[1], sim_time_us);
+    f(kSignals[2], fault_watchdog);
+    f(kSignals[3], fault_cmd_timeout);
+    f(kSignals[4], fault_load_timeout);
+    f(kSignals[5], fault_rt_overrun);
+    f(kSignals[6], fault_bus_error);
+    f(kSignals[7], fault_scene);
+    f(kSignals[8], fault_rx_rejected);
+    f(kSignals[9], step_seq_ack);
+    f(kSignals[10], sample_tag);
+  }
 };
 
 // Signals only: byte 0 and the low nibble of byte 1 are left 0 for E2E.
@@ -644,10 +812,30 @@ struct PlantDiag {
   static constexpr uint16_t kCycleTime_ms = 100;
   static constexpr uint16_t kRxTimeout_ms = 500;
   static constexpr const char* kName = "PlantDiag";
+  // Payload bits carrying signals (E2E header excluded).
+  static constexpr uint64_t kSignalMask = 0xFFFFFFFFFFFF0000ull;
 
   uint16_t rejected_frames = 0;  // [0, 65535] frames
   uint16_t cmd_timeouts = 0;  // [0, 65535] events
   uint16_t rt_overruns = 0;  // [0, 65535] steps
+
+  static constexpr SignalInfo kSignals[3] = {
+      {"rejected_frames", "frames", SignalKind::Integer, 0.0, 65535.0, 1.0},
+      {"cmd_timeouts", "events", SignalKind::Integer, 0.0, 65535.0, 1.0},
+      {"rt_overruns", "steps", SignalKind::Integer, 0.0, 65535.0, 1.0},
+  };
+  template <class F>
+  constexpr void visit(F&& f) {
+    f(kSignals[0], rejected_frames);
+    f(kSignals[1], cmd_timeouts);
+    f(kSignals[2], rt_overruns);
+  }
+  template <class F>
+  constexpr void visit(F&& f) const {
+    f(kSignals[0], rejected_frames);
+    f(kSignals[1], cmd_timeouts);
+    f(kSignals[2], rt_overruns);
+  }
 };
 
 // Signals only: byte 0 and the low nibble of byte 1 are left 0 for E2E.
@@ -801,6 +989,34 @@ inline CodecStatus decode_any(const CanFrame& f, AnyMessage& out) noexcept {
     }
   }
   return CodecStatus::UnknownId;
+}
+
+// Calls f(Msg{}) once per message type, in CAN ID order.
+template <class F>
+void for_each_message_type(F&& f) {
+  f(SimCtrl{});
+  f(CtrlCmd{});
+  f(HarnessLoad{});
+  f(PlantSpeeds{});
+  f(PlantRatio{});
+  f(PlantForces{});
+  f(PlantStatus{});
+  f(PlantDiag{});
+}
+
+// Calls f(const Msg&) with the member selected by `which`.
+template <class F>
+void visit_any(const AnyMessage& a, F&& f) {
+  switch (a.which) {
+    case MessageId::SimCtrl: f(a.sim_ctrl); break;
+    case MessageId::CtrlCmd: f(a.ctrl_cmd); break;
+    case MessageId::HarnessLoad: f(a.harness_load); break;
+    case MessageId::PlantSpeeds: f(a.plant_speeds); break;
+    case MessageId::PlantRatio: f(a.plant_ratio); break;
+    case MessageId::PlantForces: f(a.plant_forces); break;
+    case MessageId::PlantStatus: f(a.plant_status); break;
+    case MessageId::PlantDiag: f(a.plant_diag); break;
+  }
 }
 
 // One E2E receiver per message: the full receive pipeline of channel.hpp

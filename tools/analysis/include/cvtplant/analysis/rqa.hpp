@@ -32,6 +32,14 @@ struct RqaResult {
   int theiler = 0;
 };
 
+// Minimal diagonal line that delay embedding alone cannot create
+// (docs/analysis.md#rqa-lmin): with tau < m-1, consecutive delay vectors share
+// coordinates, so even noise makes diagonals of length up to (m-1)/tau + 1.
+inline int default_lmin(int m, int tau) {
+  const int span = (m - 1 + tau - 1) / tau;  // ceil((m-1)/tau)
+  return span + 1 > 2 ? span + 1 : 2;
+}
+
 // Radius giving recurrence rate `rr` among eligible pairs, from a fixed-seed
 // sample of pairs (deterministic).
 double radius_for_rr(const Embedding& e, double rr, int theiler);

@@ -1,0 +1,92 @@
+// Speed and memory of the time-series estimators against O(N^2) references
+// (docs/analysis.md#benchmarks). Peak RSS is process-wide, so measure memory
+// with one benchmark per process: --benchmark_filter=BM_Rqa_stream/100000.
+#include <benchmark/benchmark.h>
+#include <sys/resource.h>
+
+#include "cvtplant/analysis/lle.hpp"
+#include "cvtplant/analysis/rqa.hpp"
+#include "cvtplant/analysis/series.hpp"
+#include "cvtplant/analysis/systems.hpp"
+
+using namespace cvt::analysis;
+
+namespace {
+
+// Lorenz x sampled every 0.01 after a transient of 50, z-scored.
+const std::vector<double>& lorenz(std::size_t n) {
+  static std::vector<double> cache;
+  if (cache.size() < n) {
+    const Scene& s = find_scene("lorenz");
+    const auto rows = s.trajectory(s.default_params, s.default_x0, 0.005, 50, static_cast<double>(n) * 0.01, 0.01);
+    cache.clear();
+    for (std::size_t i = 0; i < rows.size(); i += 3) cache.push_back(rows[i]);
+    cache = zscore(cache);
+  }
+  static std::vector<double> out;
+  out.assign(cache.begin(), cache.begin() + static_cast<long>(n));
+  return out;
+}
+
+double peak_rss_MB() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_maxrss) / 1024.0;
+}
+
+LleOptions lle_opts() {
+  LleOptions o;
+  o.m = 5;
+  o.tau = 18;
+  o.dt = 0.01;
+  o.theiler = 100;
+  o.k_max = 400;
+  return o;
+}
+
+void BM_Rosenstein_kdtree(benchmark::State& st) {
+  const auto x = lorenz(static_cast<std::size_t>(st.range(0)));
+  double lam = 0;
+  for (auto _ : st) lam = lle_rosenstein(x, lle_opts()).fit.slope;
+  st.counters["lambda"] = lam;
+  st.counters["peak_rss_MB"] = peak_rss_MB();
+}
+BENCHMARK(BM_Rosenstein_kdtree)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+void BM_Rosenstein_naive(benchmark::State& st) {
+  const auto x = lorenz(static_cast<std::size_t>(st.range(0)));
+  double lam = 0;
+  for (auto _ : st) lam = lle_rosenstein_naive(x, lle_opts()).fit.slope;
+  st.counters["lambda"] = lam;
+}
+BENCHMARK(BM_Rosenstein_naive)->Arg(10000)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+RqaOptions rqa_opts() {
+  RqaOptions o;
+  o.eps = 0.1;  // z-scored Lorenz, m=3: RR ~ 0.5%
+  o.theiler = 1;
+  return o;
+}
+
+void BM_Rqa_stream(benchmark::State& st) {
+  const Embedding e = delay_embed(lorenz(static_cast<std::size_t>(st.range(0))), 3, 18);
+  RqaResult r;
+  for (auto _ : st) r = rqa(e, rqa_opts());
+  st.counters["RR"] = r.rr;
+  st.counters["DET"] = r.det;
+  st.counters["peak_rss_MB"] = peak_rss_MB();
+}
+BENCHMARK(BM_Rqa_stream)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+void BM_Rqa_naive(benchmark::State& st) {
+  const Embedding e = delay_embed(lorenz(static_cast<std::size_t>(st.range(0))), 3, 18);
+  RqaResult r;
+  for (auto _ : st) r = rqa_naive(e, rqa_opts());
+  st.counters["RR"] = r.rr;
+  st.counters["DET"] = r.det;
+}
+BENCHMARK(BM_Rqa_naive)->Arg(10000)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,445 @@
+#pragma once
+// The real-time reduced-order CVT plant (docs/rom.md): the seed's 2-DOF
+// stick-slip oscillator (Eq. 8/9) made into a drive train.
+//
+//   state  [w1 w2 x1 xd1 x2 xd2 | Fh delta deltadot (axial) | psi (polygon)]
+//   v1 = r1e w1, v_c = r2 w2, v_rel_i = (v_c + xd_i) - v1          docs/rom.md#kinematics
+//   F_i = -mu(|v_rel_i|) s(v_rel_i) N_i,  N_i = F_ax / cos(beta_i)   docs/rom.md#contact
+//   J1 w1' = tau_in - r1e (F1 + F2)                                  docs/rom.md#equations-of-motion
+//   J2 w2' = r2 (k1 x1 + c1 xd1 + k1 x2 + c1 xd2) - tau_load
+//   m (xd_i' + r2 w2') = F_i - k1 x_i - c1 xd_i -+ (k2 (x1-x2) + c2 (xd1-xd2))
+//
+// Templated on the scalar T and a compile-time feature mask (rom_params.hpp);
+// heap-free; inputs are a member set before each step (integrate/system.hpp).
+#include <cstdint>
+#include <type_traits>
+
+#include <Eigen/Core>
+
+#include "cvtplant/friction/friction_law.hpp"
+#include "cvtplant/integrate/system.hpp"
+#include "cvtplant/math/detmath.hpp"
+#include "cvtplant/plant/rom_params.hpp"
+#include "cvtplant/scalar/scalar.hpp"
+
+namespace cvt {
+
+// State layout for a feature mask (docs/rom.md#state).
+template <std::uint32_t F>
+struct RomLayout {
+  static constexpr bool kAxial = (F & rom_feature::axial) != 0;
+  static constexpr bool kRoad = (F & rom_feature::road_load) != 0;
+  static constexpr bool kDeform = (F & rom_feature::deformation) != 0;
+  static constexpr bool kPolygon = (F & rom_feature::polygon) != 0;
+  static constexpr int kW1 = 0, kW2 = 1, kX1 = 2, kV1 = 3, kX2 = 4, kV2 = 5;
+  static constexpr int kFh = 6;                       // valid if kAxial
+  static constexpr int kDelta = 7, kDeltaDot = 8;     // valid if kAxial
+  static constexpr int kPsi = kAxial ? 9 : 6;         // valid if kPolygon
+  static constexpr int kStates = 6 + (kAxial ? 3 : 0) + (kPolygon ? 1 : 0);
+  static constexpr std::uint32_t kPositionMask =
+      (1u << kX1) | (1u << kX2) | (kAxial ? (1u << kDelta) : 0u) | (kPolygon ? (1u << kPsi) : 0u);
+};
+
+// Everything a frame reports (docs/rom.md#outputs). Forces in N, torques in N m.
+template <class T>
+struct RomOutputs {
+  T omega1_rad_s{}, omega2_rad_s{};
+  T speed_ratio{};        // w1 / w2 (0 while |w2| < 1e-3 rad/s)
+  T geometric_ratio{};    // r2 / r1
+  T slip{};               // (v1 - v_c) / v1 (0 while |v1| < 1e-3 m/s)
+  T clamp_force_N{};      // F_ax acting on the lumps
+  T torque_transmitted_Nm{};  // r1e (F1 + F2): friction torque on the driver
+  T tau_in_Nm{}, tau_load_Nm{};  // as applied (held pulleys report the holding torque)
+  T friction1_N{}, friction2_N{};
+  T v_rel1_m_s{}, v_rel2_m_s{};
+  bool stick1 = false, stick2 = false;
+};
+
+// Instantaneous power terms [W] (docs/rom.md#energy-balance): dE/dt =
+// input + actuator - load - friction_loss - damping_loss.
+template <class A>
+struct RomPower {
+  A input_W{}, actuator_W{}, load_W{}, friction_loss_W{}, damping_loss_W{};
+};
+
+template <class T, std::uint32_t Features = 0>
+class CvtRom {
+  using L = RomLayout<Features>;
+
+ public:
+  using Scalar = T;
+  static constexpr std::uint32_t kFeatures = Features;
+  static constexpr int kStates = L::kStates;
+  static constexpr std::uint32_t kPositionMask = L::kPositionMask;
+  using Layout = L;
+  using State = Eigen::Matrix<T, kStates, 1>;
+  using Jacobian = Eigen::Matrix<T, kStates, kStates>;
+  // Energy bookkeeping runs in float for fixed point (energies of 1e5 J do
+  // not fit q16.16) and in the plant's own type otherwise.
+  using Acc = std::conditional_t<std::is_same_v<T, double>, double, float>;
+
+  RomInputs<T> inputs;
+
+  explicit CvtRom(const RomParams& p) : p_(p) {
+    c_.r1 = T(p.r1_m);
+    c_.r2 = T(p.r2_m);
+    c_.inv_J1 = T(1.0 / p.J1_kgm2);
+    c_.inv_J2 = T(1.0 / p.J2_kgm2);
+    c_.inv_m = T(1.0 / p.lump_mass_kg);
+    c_.k1 = T(p.k1_N_m);
+    c_.c1 = T(p.c1_Ns_m);
+    c_.k2 = T(p.k2_N_m);
+    c_.c2 = T(p.c2_Ns_m);
+    c_.friction = p.friction.template cast<T>();
+    // docs/rom.md#deformation: beta_i = beta0 + Delta/2 sin(zeta_i - theta_c + pi/2),
+    // Delta, theta_c from seed Eq. 4. The lumps sit at fixed wrap angles, so
+    // 1/cos(beta_i) is a set-up constant and the feature costs nothing per step.
+    double b1 = p.beta0_rad, b2 = p.beta0_rad;
+    if constexpr (L::kDeform) {
+      const double ratio = p.r1_m / p.r2_m;
+      const double Delta = 0.00045 / dm::exp(0.55 * log_pos(ratio));
+      const double theta_c = 3.14159265358979323846 * ratio / 3.0 + 23.0 * 3.14159265358979323846 / 180.0;
+      b1 += 0.5 * Delta * dm::sin(p.zeta1_rad - theta_c + 1.57079632679489661923);
+      b2 += 0.5 * Delta * dm::sin(p.zeta2_rad - theta_c + 1.57079632679489661923);
+    }
+    c_.inv_cos1 = T(1.0 / dm::cos(b1));
+    c_.inv_cos2 = T(1.0 / dm::cos(b2));
+    c_.hold1 = p.hold_driver_speed;
+    c_.hold2 = p.hold_driven_speed;
+    c_.stick_speed = T(p.stick_speed_m_s);
+    if constexpr (L::kAxial) {
+      c_.inv_tau_h = T(1.0 / p.actuator_tau_s);
+      c_.clamp_max = T(p.clamp_max_N);
+      c_.inv_ms = T(1.0 / p.sheave_mass_kg);
+      c_.cs = T(p.sheave_damping_Ns_m);
+      c_.K_ax = T(p.K_ax_N_m);
+    }
+    if constexpr (L::kRoad) {
+      c_.T0 = T(p.road_T0_Nm);
+      c_.cv = T(p.road_cv_Nms_rad);
+      c_.ca = T(p.road_ca_Nms2_rad2);
+      c_.inv_w_eps = T(1.0 / p.road_w_eps_rad_s);
+    }
+    if constexpr (L::kPolygon) {
+      // docs/rom.md#polygon: half the angle one link subtends on the driver.
+      c_.alpha = T(asin_small(p.pitch_m / (2.0 * p.r1_m)));
+    }
+    // Accounting copies (docs/rom.md#energy-balance).
+    a_.J1 = Acc(p.J1_kgm2);
+    a_.J2 = Acc(p.J2_kgm2);
+    a_.m = Acc(p.lump_mass_kg);
+    a_.k1 = Acc(p.k1_N_m);
+    a_.k2 = Acc(p.k2_N_m);
+    a_.c1 = Acc(p.c1_Ns_m);
+    a_.c2 = Acc(p.c2_Ns_m);
+    a_.r2 = Acc(p.r2_m);
+    a_.ms = Acc(p.sheave_mass_kg);
+    a_.cs = Acc(p.sheave_damping_Ns_m);
+    a_.K_ax = Acc(p.K_ax_N_m);
+  }
+
+  const RomParams& params() const { return p_; }
+  T polygon_half_angle_rad() const { return c_.alpha; }
+
+  // Clamping command after actuator saturation [0, F_max] (docs/rom.md#axial).
+  T saturated_command() const {
+    const T f = inputs.clamp_N;
+    if constexpr (L::kAxial) return f < T(0) ? T(0) : (f > c_.clamp_max ? c_.clamp_max : f);
+    return f;
+  }
+
+  // Initial state from SI set-up values; axial states at the static
+  // equilibrium of the current command (docs/rom.md#initial-state).
+  State initial_state(const RomInitial& x0) const {
+    State x = State::Zero();
+    x(L::kW1) = T(x0.omega1_rad_s);
+    x(L::kW2) = T(x0.omega2_rad_s);
+    x(L::kX1) = T(x0.x1_m);
+    x(L::kV1) = T(x0.xd1_m_s);
+    x(L::kX2) = T(x0.x2_m);
+    x(L::kV2) = T(x0.xd2_m_s);
+    if constexpr (L::kAxial) {
+      const T fh = saturated_command();
+      x(L::kFh) = fh;
+      x(L::kDelta) = T(to_double(fh) / p_.K_ax_N_m);
+      x(L::kDeltaDot) = T(0);
+    }
+    if constexpr (L::kPolygon) x(L::kPsi) = T(x0.phase_rad);
+    return x;
+  }
+
+  // Keeps the polygon phase in [-alpha, alpha) between steps (it is periodic
+  // in the link pitch; wrapping outside the integrator keeps it bounded for
+  // float and fixed point). docs/rom.md#polygon
+  void wrap(State& x) const {
+    if constexpr (L::kPolygon) {
+      const T two_alpha = c_.alpha + c_.alpha;
+      while (x(L::kPsi) >= c_.alpha) x(L::kPsi) -= two_alpha;
+      while (x(L::kPsi) < -c_.alpha) x(L::kPsi) += two_alpha;
+    } else {
+      (void)x;
+    }
+  }
+
+  // Axial force on the lumps: the input (no axial feature) or the bolt force
+  // K_ax max(0, delta) (seed Eq. 5 lumped; docs/rom.md#axial).
+  template <class S>
+  S clamp_force(const Eigen::Matrix<S, kStates, 1>& x) const {
+    if constexpr (L::kAxial) {
+      const S d = x(L::kDelta);
+      return d > S(T(0)) ? S(c_.K_ax) * d : S(T(0));
+    } else {
+      (void)x;
+      return S(inputs.clamp_N);
+    }
+  }
+
+  // Effective driver radius r1e: r1, or r1 cos(psi) with chordal action.
+  template <class S>
+  S driver_radius(const Eigen::Matrix<S, kStates, 1>& x) const {
+    if constexpr (L::kPolygon) return S(c_.r1) * dm::cos(x(L::kPsi));
+    (void)x;
+    return S(c_.r1);
+  }
+
+  // Load torque at the driven shaft (docs/rom.md#road-load).
+  template <class S>
+  S load_torque(const S& w2) const {
+    S tl(inputs.tau_load_Nm);
+    if constexpr (L::kRoad) {
+      tl = tl + S(c_.T0) * dm::tanh(w2 * S(c_.inv_w_eps)) + S(c_.cv) * w2 + S(c_.ca) * w2 * dm::abs(w2);
+    }
+    return tl;
+  }
+
+  template <class S>
+  void derivative(const Eigen::Matrix<S, kStates, 1>& x, Eigen::Matrix<S, kStates, 1>& dxdt) const {
+    const S w1 = x(L::kW1), w2 = x(L::kW2);
+    const S x1 = x(L::kX1), xd1 = x(L::kV1), x2 = x(L::kX2), xd2 = x(L::kV2);
+    const S r1e = driver_radius(x);
+    const S v1 = r1e * w1;
+    const S vc = S(c_.r2) * w2;
+    const S fax = clamp_force(x);
+    // Friction and spring groupings match StickSlipOscillator so that the
+    // held-pulley scene reproduces seed Eq. 9 to the last bit (docs/rom.md#holds).
+    const S F1 = -friction_characteristic(c_.friction, S((vc + xd1) - v1)) * (fax * S(c_.inv_cos1));
+    const S F2 = -friction_characteristic(c_.friction, S((vc + xd2) - v1)) * (fax * S(c_.inv_cos2));
+    const S mid = S(c_.k2) * (x1 - x2) + S(c_.c2) * (xd1 - xd2);
+    const S strand1 = S(c_.k1) * x1 + S(c_.c1) * xd1;
+    const S strand2 = S(c_.k1) * x2 + S(c_.c1) * xd2;
+    const S w1dot = c_.hold1 ? S(T(0)) : (S(inputs.tau_in_Nm) - r1e * (F1 + F2)) * S(c_.inv_J1);
+    const S w2dot = c_.hold2 ? S(T(0)) : (S(c_.r2) * (strand1 + strand2) - load_torque(w2)) * S(c_.inv_J2);
+    const S chain_acc = S(c_.r2) * w2dot;
+    dxdt(L::kW1) = w1dot;
+    dxdt(L::kW2) = w2dot;
+    dxdt(L::kX1) = xd1;
+    dxdt(L::kV1) = (F1 - strand1 - mid) * S(c_.inv_m) - chain_acc;
+    dxdt(L::kX2) = xd2;
+    dxdt(L::kV2) = (F2 - strand2 + mid) * S(c_.inv_m) - chain_acc;
+    if constexpr (L::kAxial) {
+      const S fh = x(L::kFh), dd = x(L::kDeltaDot);
+      dxdt(L::kFh) = (S(saturated_command()) - fh) * S(c_.inv_tau_h);
+      dxdt(L::kDelta) = dd;
+      dxdt(L::kDeltaDot) = (fh - fax - S(c_.cs) * dd) * S(c_.inv_ms);
+    }
+    if constexpr (L::kPolygon) dxdt(L::kPsi) = w1;
+  }
+
+  // Analytic Jacobian (docs/rom.md#jacobian). Held pulleys get zero rows AND
+  // columns: their speed never changes, so the columns multiply a zero
+  // increment, and leaving them out keeps the LU pivots those of seed Eq. 9.
+  void jacobian(const State& x, Jacobian& J) const {
+    J.setZero();
+    const T w1 = x(L::kW1), w2 = x(L::kW2);
+    const T xd1 = x(L::kV1), xd2 = x(L::kV2);
+    const T r1e = driver_radius(x);
+    const T v1 = r1e * w1;
+    const T vc = c_.r2 * w2;
+    const T vr1 = (vc + xd1) - v1, vr2 = (vc + xd2) - v1;
+    const T fax = clamp_force(x);
+    const T N1 = fax * c_.inv_cos1, N2 = fax * c_.inv_cos2;
+    // dF_i/dv_rel_i = -phi'(v_rel) N_i
+    const T g1 = -friction_characteristic_slope(c_.friction, vr1) * N1;
+    const T g2 = -friction_characteristic_slope(c_.friction, vr2) * N2;
+    const T gs = g1 + g2;
+    const T im = c_.inv_m;
+    const bool free1 = !c_.hold1, free2 = !c_.hold2;
+
+    // Row of w2dot (also enters the lump rows through -r2 w2dot).
+    T rw2[kStates];
+    for (int j = 0; j < kStates; ++j) rw2[j] = T(0);
+    if (free2) {
+      T dtl = T(0);
+      if constexpr (L::kRoad) {
+        const T th = dm::tanh(w2 * c_.inv_w_eps);
+        dtl = c_.T0 * (T(1) - th * th) * c_.inv_w_eps + c_.cv + (c_.ca + c_.ca) * dm::abs(w2);
+      }
+      rw2[L::kW2] = -dtl * c_.inv_J2;
+      rw2[L::kX1] = c_.r2 * c_.k1 * c_.inv_J2;
+      rw2[L::kV1] = c_.r2 * c_.c1 * c_.inv_J2;
+      rw2[L::kX2] = c_.r2 * c_.k1 * c_.inv_J2;
+      rw2[L::kV2] = c_.r2 * c_.c1 * c_.inv_J2;
+      for (int j = 0; j < kStates; ++j) J(L::kW2, j) = rw2[j];
+    }
+    // Partials of F_i w.r.t. the states, columns w1, w2, xd_i, delta, psi.
+    T dF1[kStates], dF2[kStates];
+    for (int j = 0; j < kStates; ++j) dF1[j] = dF2[j] = T(0);
+    dF1[L::kW1] = -g1 * r1e;
+    dF2[L::kW1] = -g2 * r1e;
+    dF1[L::kW2] = g1 * c_.r2;
+    dF2[L::kW2] = g2 * c_.r2;
+    dF1[L::kV1] = g1;
+    dF2[L::kV2] = g2;
+    if constexpr (L::kAxial) {
+      if (x(L::kDelta) > T(0)) {
+        // dF_i/dF_ax = -phi(v_rel_i) / cos(beta_i)
+        dF1[L::kDelta] = -friction_characteristic(c_.friction, vr1) * c_.inv_cos1 * c_.K_ax;
+        dF2[L::kDelta] = -friction_characteristic(c_.friction, vr2) * c_.inv_cos2 * c_.K_ax;
+      }
+    }
+    T sin_psi = T(0);
+    if constexpr (L::kPolygon) {
+      sin_psi = dm::sin(x(L::kPsi));
+      // dv_rel/dpsi = -dr1e/dpsi w1 = r1 sin(psi) w1
+      const T dv = c_.r1 * sin_psi * w1;
+      dF1[L::kPsi] = g1 * dv;
+      dF2[L::kPsi] = g2 * dv;
+    }
+    if (!free1) dF1[L::kW1] = dF2[L::kW1] = T(0);
+    if (!free2) dF1[L::kW2] = dF2[L::kW2] = T(0);
+
+    if (free1) {
+      for (int j = 0; j < kStates; ++j) J(L::kW1, j) = -r1e * (dF1[j] + dF2[j]) * c_.inv_J1;
+      if constexpr (L::kPolygon) {
+        const T F1 = -friction_characteristic(c_.friction, vr1) * N1;
+        const T F2 = -friction_characteristic(c_.friction, vr2) * N2;
+        // d(r1e)/dpsi = -r1 sin(psi)
+        J(L::kW1, L::kPsi) += c_.r1 * sin_psi * (F1 + F2) * c_.inv_J1;
+      }
+    }
+    (void)gs;
+    J(L::kX1, L::kV1) = T(1);
+    J(L::kX2, L::kV2) = T(1);
+    for (int j = 0; j < kStates; ++j) {
+      J(L::kV1, j) = dF1[j] * im - c_.r2 * rw2[j];
+      J(L::kV2, j) = dF2[j] * im - c_.r2 * rw2[j];
+    }
+    J(L::kV1, L::kX1) += -(c_.k1 + c_.k2) * im;
+    J(L::kV1, L::kX2) += c_.k2 * im;
+    J(L::kV1, L::kV1) += -(c_.c1 + c_.c2) * im;
+    J(L::kV1, L::kV2) += c_.c2 * im;
+    J(L::kV2, L::kX1) += c_.k2 * im;
+    J(L::kV2, L::kX2) += -(c_.k1 + c_.k2) * im;
+    J(L::kV2, L::kV1) += c_.c2 * im;
+    J(L::kV2, L::kV2) += -(c_.c1 + c_.c2) * im;
+    if constexpr (L::kAxial) {
+      J(L::kFh, L::kFh) = -c_.inv_tau_h;
+      J(L::kDelta, L::kDeltaDot) = T(1);
+      J(L::kDeltaDot, L::kFh) = c_.inv_ms;
+      J(L::kDeltaDot, L::kDelta) = x(L::kDelta) > T(0) ? -c_.K_ax * c_.inv_ms : T(0);
+      J(L::kDeltaDot, L::kDeltaDot) = -c_.cs * c_.inv_ms;
+    }
+    if constexpr (L::kPolygon) J(L::kPsi, L::kW1) = T(1);
+  }
+
+  RomOutputs<T> outputs(const State& x) const {
+    RomOutputs<T> o;
+    const T w1 = x(L::kW1), w2 = x(L::kW2);
+    const T r1e = driver_radius(x);
+    const T v1 = r1e * w1;
+    const T vc = c_.r2 * w2;
+    const T fax = clamp_force(x);
+    o.omega1_rad_s = w1;
+    o.omega2_rad_s = w2;
+    o.geometric_ratio = c_.r2 / c_.r1;
+    const T w_tiny = T(1e-3);
+    o.speed_ratio = dm::abs(w2) < w_tiny ? T(0) : w1 / w2;
+    o.slip = dm::abs(v1) < w_tiny ? T(0) : (v1 - vc) / v1;
+    o.clamp_force_N = fax;
+    o.v_rel1_m_s = (vc + x(L::kV1)) - v1;
+    o.v_rel2_m_s = (vc + x(L::kV2)) - v1;
+    o.friction1_N = -friction_characteristic(c_.friction, o.v_rel1_m_s) * (fax * c_.inv_cos1);
+    o.friction2_N = -friction_characteristic(c_.friction, o.v_rel2_m_s) * (fax * c_.inv_cos2);
+    o.torque_transmitted_Nm = r1e * (o.friction1_N + o.friction2_N);
+    o.tau_in_Nm = c_.hold1 ? o.torque_transmitted_Nm : inputs.tau_in_Nm;
+    const T strand = c_.k1 * x(L::kX1) + c_.c1 * x(L::kV1) + (c_.k1 * x(L::kX2) + c_.c1 * x(L::kV2));
+    o.tau_load_Nm = c_.hold2 ? c_.r2 * strand : load_torque(w2);
+    o.stick1 = dm::abs(o.v_rel1_m_s) < c_.stick_speed;
+    o.stick2 = dm::abs(o.v_rel2_m_s) < c_.stick_speed;
+    return o;
+  }
+
+  // Stored energy [J] (docs/rom.md#energy-balance), in the accounting type.
+  Acc stored_energy(const State& xs) const {
+    Acc x[kStates];
+    for (int i = 0; i < kStates; ++i) x[i] = to_acc(xs(i));
+    const Acc w1 = x[L::kW1], w2 = x[L::kW2];
+    const Acc vc = a_.r2 * w2;
+    const Acc u1 = vc + x[L::kV1], u2 = vc + x[L::kV2];
+    const Acc dx = x[L::kX1] - x[L::kX2];
+    Acc e = Acc(0.5) * (a_.J1 * w1 * w1 + a_.J2 * w2 * w2 + a_.m * (u1 * u1 + u2 * u2) +
+                        a_.k1 * (x[L::kX1] * x[L::kX1] + x[L::kX2] * x[L::kX2]) + a_.k2 * dx * dx);
+    if constexpr (L::kAxial) {
+      const Acc d = x[L::kDelta] > Acc(0) ? x[L::kDelta] : Acc(0);
+      e += Acc(0.5) * (a_.ms * x[L::kDeltaDot] * x[L::kDeltaDot] + a_.K_ax * d * d);
+    }
+    return e;
+  }
+
+  // Power terms at state x with the current inputs (docs/rom.md#energy-balance).
+  RomPower<Acc> power(const State& xs) const {
+    const RomOutputs<T> o = outputs(xs);
+    Acc x[kStates];
+    for (int i = 0; i < kStates; ++i) x[i] = to_acc(xs(i));
+    RomPower<Acc> pw;
+    pw.input_W = to_acc(o.tau_in_Nm) * x[L::kW1];
+    pw.load_W = to_acc(o.tau_load_Nm) * x[L::kW2];
+    pw.friction_loss_W = -(to_acc(o.friction1_N) * to_acc(o.v_rel1_m_s) + to_acc(o.friction2_N) * to_acc(o.v_rel2_m_s));
+    const Acc dv = x[L::kV1] - x[L::kV2];
+    pw.damping_loss_W = a_.c1 * (x[L::kV1] * x[L::kV1] + x[L::kV2] * x[L::kV2]) + a_.c2 * dv * dv;
+    if constexpr (L::kAxial) {
+      pw.actuator_W = x[L::kFh] * x[L::kDeltaDot];
+      pw.damping_loss_W += a_.cs * x[L::kDeltaDot] * x[L::kDeltaDot];
+    }
+    return pw;
+  }
+
+  static Acc to_acc(const T& v) {
+    if constexpr (std::is_floating_point_v<T>) return static_cast<Acc>(v);
+    else return v.to_float();
+  }
+
+ private:
+  // Set-up helpers in double (never per step).
+  static double log_pos(double v) {
+    // ln(v) for v in (0, 1e6] by Newton on exp: set-up only, avoids <cmath>
+    // so the determinism of the constants rests on dm::exp alone.
+    double y = 0.0;
+    for (int i = 0; i < 60; ++i) y -= 1.0 - v / dm::exp(y);
+    return y;
+  }
+  static double asin_small(double s) {
+    // asin by Newton on sin, |s| < 0.9 (set-up only).
+    double y = s;
+    for (int i = 0; i < 40; ++i) y -= (dm::sin(y) - s) / dm::cos(y);
+    return y;
+  }
+
+  struct Consts {
+    T r1{}, r2{}, inv_J1{}, inv_J2{}, inv_m{}, k1{}, c1{}, k2{}, c2{};
+    FrictionParams<T> friction{};
+    T inv_cos1{}, inv_cos2{}, stick_speed{};
+    bool hold1 = false, hold2 = false;
+    T inv_tau_h{}, clamp_max{}, inv_ms{}, cs{}, K_ax{};
+    T T0{}, cv{}, ca{}, inv_w_eps{};
+    T alpha{};
+  };
+  struct AccConsts {
+    Acc J1{}, J2{}, m{}, k1{}, k2{}, c1{}, c2{}, r2{}, ms{}, cs{}, K_ax{};
+  };
+  RomParams p_;
+  Consts c_;
+  AccConsts a_;
+};
+
+}  // namespace cvt

@@ -1,0 +1,82 @@
+#pragma once
+// Parameters of the reduced-order CVT plant (docs/rom.md#parameters).
+// Set-up data in SI units; the plant converts them to its scalar type once,
+// in its constructor (double is soft-float on a Cortex-M4F, so never per step).
+#include <cstdint>
+
+#include "cvtplant/friction/friction_law.hpp"
+
+namespace cvt {
+
+// Optional physics, chosen at compile time (docs/rom.md#features). A plant
+// instantiated without a bit carries neither its states nor its code.
+namespace rom_feature {
+inline constexpr std::uint32_t axial = 1u << 0;        // actuator lag + sheave axial DOF, F_ax = bolt force
+inline constexpr std::uint32_t road_load = 1u << 1;    // tau_load += T0 tanh(w2/w_eps) + c_v w2 + c_a w2|w2|
+inline constexpr std::uint32_t deformation = 1u << 2;  // seed Eq. 3-4 flank angle per lump
+inline constexpr std::uint32_t polygon = 1u << 3;      // chordal action of the driver wrap (needs phi1 phase)
+inline constexpr std::uint32_t all = axial | road_load | deformation | polygon;
+}  // namespace rom_feature
+
+struct RomParams {
+  // Geometry (seed Table 1 / section 4).
+  double r1_m = 0.0762;            // driver pitch radius
+  double r2_m = 0.1143;            // driven pitch radius
+  double beta0_rad = 0.26179938779914943;  // 15 deg half sheave angle
+  double center_distance_m = 0.5;
+  // Pulley inertias (seed Table 1).
+  double J1_kgm2 = 1.4516;
+  double J2_kgm2 = 3.2661;
+  // Link lumps (docs/rom.md#lumped-parameters: derived from Table 1).
+  double lump_mass_kg = 0.42705977341642810;   // (n_w/2) * 0.1125 kg
+  double k1_N_m = 2707.8729961981267;          // k / (2 n_s): two lumps in parallel = the free strand
+  double c1_Ns_m = 81.236189885943800;         // p / (2 n_s)
+  double k2_N_m = 23708.624951962083;          // k / (n_w/2)
+  double c2_Ns_m = 711.25874855886240;         // p / (n_w/2)
+  FrictionParams<double> friction = friction_presets::table2_case1<double>();
+  // Kinematic holds (docs/rom.md#holds): the pulley runs at its initial speed
+  // whatever the torques; the held torque is reported as the input/load torque.
+  bool hold_driver_speed = false;
+  bool hold_driven_speed = false;
+  // Below this |v_rel| a lump is reported as sticking [m/s] (output only).
+  double stick_speed_m_s = 0.01;
+
+  // feature: axial (docs/rom.md#axial)
+  double actuator_tau_s = 0.02;       // hydraulic clamping lag
+  double clamp_max_N = 40000.0;       // actuator saturation F_max
+  double sheave_mass_kg = 2.0;        // movable sheave
+  double sheave_damping_Ns_m = 1045.0;  // zeta = 0.3 with K_ax and m_s
+  double K_ax_N_m = 1518434.7499250777; // n_w * K_b
+
+  // feature: road_load (docs/rom.md#road-load), at the driven shaft
+  double road_T0_Nm = 0.0;
+  double road_cv_Nms_rad = 0.0;
+  double road_ca_Nms2_rad2 = 0.0;
+  double road_w_eps_rad_s = 1.0;     // tanh smoothing of the rolling-resistance sign
+
+  // feature: deformation (docs/rom.md#deformation): lump wrap angles
+  double zeta1_rad = 0.74726119582927043;  // theta1/4: centre of the leading half wrap
+  double zeta2_rad = 2.2417835874878113;   // 3 theta1/4
+
+  // feature: polygon (docs/rom.md#polygon)
+  double pitch_m = 0.03;               // link length L
+};
+
+// Plant inputs, held constant over a frame (zero-order hold).
+template <class T>
+struct RomInputs {
+  T tau_in_Nm = T(0);     // driver torque
+  T tau_load_Nm = T(0);   // load torque at the driven shaft (road load adds to it)
+  T clamp_N = T(0);       // axial force F_ax (no axial feature) or clamping command F_cmd (axial)
+};
+
+// Initial conditions in SI (set-up only).
+struct RomInitial {
+  double omega1_rad_s = 0, omega2_rad_s = 0;
+  double x1_m = 0, xd1_m_s = 0, x2_m = 0, xd2_m_s = 0;
+  double phase_rad = 0;  // polygon: link-passing phase psi in [-alpha, alpha)
+  // axial: actuator force and bolt compression start at the static
+  // equilibrium of the first frame's command (F_h = F_cmd, delta = F_cmd/K_ax).
+};
+
+}  // namespace cvt

@@ -1,0 +1,175 @@
+#pragma once
+// Frame stepper for the reduced-order plant: fixed-step integration with a
+// fixed number of substeps per frame, the energy ledger and the stability
+// watchdog (docs/rom.md#frame-stepping, #energy-balance, #watchdog).
+// Heap-free; the cost per frame does not depend on the state.
+#include <cstdint>
+#include <limits>
+#include <type_traits>
+
+#include "cvtplant/integrate/method.hpp"
+#include "cvtplant/plant/cvt_rom.hpp"
+
+namespace cvt {
+
+enum class RomFault : std::uint8_t {
+  none = 0,
+  input_non_finite,   // an input was NaN/inf: the frame was not integrated
+  state_non_finite,   // the step produced NaN/inf (floating point)
+  state_saturated,    // a state hit the rail of the fixed-point range
+  energy_growth,      // stored energy exceeds what the inputs supplied (docs/rom.md#watchdog)
+};
+
+inline constexpr const char* rom_fault_name(RomFault f) {
+  switch (f) {
+    case RomFault::none: return "none";
+    case RomFault::input_non_finite: return "input-non-finite";
+    case RomFault::state_non_finite: return "state-non-finite";
+    case RomFault::state_saturated: return "state-saturated";
+    case RomFault::energy_growth: return "energy-growth";
+  }
+  return "?";
+}
+
+// Work done since reset [J]; all losses counted positive.
+template <class A>
+struct EnergyLedger {
+  A stored0_J{}, stored_J{};
+  A input_J{}, actuator_J{}, load_J{}, friction_loss_J{}, damping_loss_J{};
+  // E - E0 - (W_in + W_act - W_load - W_fric - W_damp): zero for the exact
+  // solution; positive = energy the inputs cannot explain.
+  A residual_J() const {
+    return (stored_J - stored0_J) - (input_J + actuator_J - load_J - friction_loss_J - damping_loss_J);
+  }
+  // The size of the energy flows, to make the residual relative.
+  A scale_J() const {
+    auto a = [](A v) { return v < A(0) ? -v : v; };
+    return a(stored0_J) + a(stored_J) + a(input_J) + a(actuator_J) + a(load_J) + a(friction_loss_J) +
+           a(damping_loss_J);
+  }
+};
+
+struct RomSimConfig {
+  Method method = Method::ros2;
+  int substeps = 1;            // integrator steps per frame
+  double frame_s = 1e-3;
+  bool watchdog_energy = true;
+  double energy_rel_tol = 0.05;  // residual > rel * scale + abs  ->  energy_growth
+  double energy_abs_tol_J = 1.0;
+};
+
+template <class T, std::uint32_t Features = 0>
+class RomSimulator {
+ public:
+  using Plant = CvtRom<T, Features>;
+  using State = typename Plant::State;
+  using Acc = typename Plant::Acc;
+
+  RomSimulator(const RomParams& p, const RomSimConfig& c)
+      : plant_(p),
+        cfg_(c),
+        h_(T(c.frame_s / static_cast<double>(c.substeps < 1 ? 1 : c.substeps))),
+        h_acc_(Acc(c.frame_s / static_cast<double>(c.substeps < 1 ? 1 : c.substeps))),
+        rel_tol_(Acc(c.energy_rel_tol)),
+        abs_tol_(Acc(c.energy_abs_tol_J)) {
+    x_.setZero();
+  }
+
+  // Starts a run. u0 sets the axial equilibrium of the initial state.
+  void reset(const RomInitial& x0, const RomInputs<T>& u0) {
+    plant_.inputs = u0;
+    x_ = plant_.initial_state(x0);
+    fault_ = RomFault::none;
+    ledger_ = EnergyLedger<Acc>{};
+    ledger_.stored0_J = ledger_.stored_J = plant_.stored_energy(x_);
+    frames_ = 0;
+  }
+
+  // One frame with inputs held constant (zero-order hold). Returns the
+  // (latched) fault state; a faulted simulator keeps its last good state.
+  RomFault step_frame(const RomInputs<T>& u) {
+    if (fault_ != RomFault::none) return fault_;
+    if (!finite(u.tau_in_Nm) || !finite(u.tau_load_Nm) || !finite(u.clamp_N)) {
+      fault_ = RomFault::input_non_finite;
+      return fault_;
+    }
+    plant_.inputs = u;
+    const State x_prev = x_;
+    const EnergyLedger<Acc> ledger_prev = ledger_;
+    const int n = cfg_.substeps < 1 ? 1 : cfg_.substeps;
+    RomPower<Acc> p0 = plant_.power(x_);
+    for (int i = 0; i < n; ++i) {
+      step(cfg_.method, plant_, x_, h_);
+      plant_.wrap(x_);
+      if (const RomFault f = check_state(x_); f != RomFault::none) {
+        x_ = x_prev;
+        ledger_ = ledger_prev;
+        fault_ = f;
+        return fault_;
+      }
+      // docs/rom.md#energy-balance: trapezoid on the power terms at the
+      // substep ends (inputs constant over the frame).
+      const RomPower<Acc> p1 = plant_.power(x_);
+      const Acc hh = h_acc_ * Acc(0.5);
+      ledger_.input_J += hh * (p0.input_W + p1.input_W);
+      ledger_.actuator_J += hh * (p0.actuator_W + p1.actuator_W);
+      ledger_.load_J += hh * (p0.load_W + p1.load_W);
+      ledger_.friction_loss_J += hh * (p0.friction_loss_W + p1.friction_loss_W);
+      ledger_.damping_loss_J += hh * (p0.damping_loss_W + p1.damping_loss_W);
+      p0 = p1;
+    }
+    ledger_.stored_J = plant_.stored_energy(x_);
+    ++frames_;
+    if (cfg_.watchdog_energy) {
+      const Acc r = ledger_.residual_J();
+      if (!(r == r) || r > rel_tol_ * ledger_.scale_J() + abs_tol_) {
+        x_ = x_prev;
+        ledger_ = ledger_prev;
+        fault_ = RomFault::energy_growth;
+      }
+    }
+    return fault_;
+  }
+
+  RomOutputs<T> outputs() const { return plant_.outputs(x_); }
+  const State& state() const { return x_; }
+  State& mutable_state() { return x_; }
+  const Plant& plant() const { return plant_; }
+  const EnergyLedger<Acc>& energy() const { return ledger_; }
+  RomFault fault() const { return fault_; }
+  long frames() const { return frames_; }
+  T substep_s() const { return h_; }
+
+ private:
+  static bool finite(const T& v) {
+    if constexpr (std::is_floating_point_v<T>) {
+      return v == v && v - v == v - v;  // NaN fails the first, +-inf the second
+    } else {
+      (void)v;
+      return true;  // fixed point has no NaN/inf
+    }
+  }
+
+  static RomFault check_state(const State& x) {
+    for (int i = 0; i < Plant::kStates; ++i) {
+      if constexpr (std::is_floating_point_v<T>) {
+        if (!finite(x(i))) return RomFault::state_non_finite;
+      } else {
+        if (x(i) == T::max() || x(i) == T::lowest()) return RomFault::state_saturated;
+      }
+    }
+    return RomFault::none;
+  }
+
+  Plant plant_;
+  RomSimConfig cfg_;
+  T h_;
+  Acc h_acc_;
+  Acc rel_tol_, abs_tol_;
+  State x_;
+  RomFault fault_ = RomFault::none;
+  EnergyLedger<Acc> ledger_{};
+  long frames_ = 0;
+};
+
+}  // namespace cvt

@@ -1,0 +1,133 @@
+#pragma once
+// The built-in scenes (docs/rom.md#built-in-scenes): constexpr data, usable
+// from firmware without the heap. Parameter choices are justified in
+// docs/rom.md; the tests in tests/unit/test_rom_scenes.cpp run every one.
+#include <cstring>
+
+#include "cvtplant/scene/scene.hpp"
+
+namespace cvt {
+
+namespace builtin_detail {
+
+// Seed section 3 oscillator (Eq. 9) as a plant with both pulleys held:
+// r1 = 1 m so the belt speed v = r1 w1 is exact, beta0 = 0 and F_ax = m g so
+// N_i = m g exactly (docs/rom.md#holds).
+constexpr Scene oscillator(const char* name, const char* summary, const FrictionParams<double>& f, double t_end) {
+  Scene s;
+  s.name = name;
+  s.summary = summary;
+  s.features = 0;
+  s.params.r1_m = 1.0;
+  s.params.r2_m = 1.0;
+  s.params.beta0_rad = 0.0;
+  s.params.J1_kgm2 = 1.0;
+  s.params.J2_kgm2 = 1.0;
+  s.params.lump_mass_kg = 1.0;
+  s.params.k1_N_m = 25.0;
+  s.params.k2_N_m = 25.0;
+  s.params.c1_Ns_m = 1.0;
+  s.params.c2_Ns_m = 1.0;
+  s.params.friction = f;
+  s.params.hold_driver_speed = true;
+  s.params.hold_driven_speed = true;
+  s.initial.omega1_rad_s = 3.5;
+  s.initial.xd1_m_s = 3.0;  // seed start [x1 v1 x2 v2] = [0 3 0 6]
+  s.initial.xd2_m_s = 6.0;
+  s.clamp = constant_profile(1.0 * 9.81);  // m g
+  s.t_end_s = t_end;
+  s.log = rom_log::friction | rom_log::energy | rom_log::states;
+  return s;
+}
+
+// Seed section 4: tau_in = 100 N m, tau_l = 50 N m, Table 1/2, from rest,
+// clamping command 3.3 kN = 1.3 x the 2.54 kN that carries 100 N m at mu0.
+constexpr Scene seed_case(const char* name, const char* summary, const FrictionParams<double>& f) {
+  Scene s;
+  s.name = name;
+  s.summary = summary;
+  s.features = rom_feature::axial;
+  s.params.friction = f;
+  s.tau_in = constant_profile(100.0);
+  s.tau_load = constant_profile(50.0);
+  s.clamp = constant_profile(3300.0);
+  s.t_end_s = 10.0;
+  return s;
+}
+
+// A drive-away load at the driven shaft (docs/rom.md#road-load): 35 N m at
+// w2 = 100 rad/s.
+constexpr void road(Scene& s) {
+  s.params.road_T0_Nm = 10.0;
+  s.params.road_cv_Nms_rad = 0.05;
+  s.params.road_ca_Nms2_rad2 = 0.002;
+}
+
+constexpr Scene clamp_step() {
+  Scene s;
+  s.name = "clamp-step";
+  s.summary = "clamping command 1.2 -> 3.0 kN at 2 s under 60 N m: flare (gross slip), then re-grip";
+  s.features = rom_feature::axial | rom_feature::road_load;
+  s.params.friction = friction_presets::table2_case1<double>();
+  road(s);
+  s.initial.omega1_rad_s = 150.0;
+  s.initial.omega2_rad_s = 100.0;  // = 150 r1/r2: no slip at the start
+  s.tau_in = constant_profile(60.0);
+  s.clamp = step_profile(1200.0, 3000.0, 2.0);
+  s.t_end_s = 6.0;
+  return s;
+}
+
+constexpr Scene tip_in() {
+  Scene s;
+  s.name = "tip-in";
+  s.summary = "driver torque 20 -> 120 N m in 0.2 s at 1 s, 4 kN clamping, road load";
+  s.features = rom_feature::axial | rom_feature::road_load;
+  s.params.friction = friction_presets::table2_case1<double>();
+  road(s);
+  s.initial.omega1_rad_s = 150.0;
+  s.initial.omega2_rad_s = 100.0;
+  s.tau_in = ramp_profile(20.0, 120.0, 1.0, 1.2);
+  s.clamp = constant_profile(4000.0);
+  s.t_end_s = 5.0;
+  return s;
+}
+
+constexpr Scene gross_slip() {
+  Scene s;
+  s.name = "gross-slip";
+  s.summary = "seed torques with 1 kN clamping (capacity 39 N m): the chain slips on the driver";
+  s.features = 0;
+  s.params.friction = friction_presets::table2_case1<double>();
+  s.tau_in = constant_profile(100.0);
+  s.tau_load = constant_profile(50.0);
+  s.clamp = constant_profile(1000.0);
+  s.t_end_s = 10.0;
+  return s;
+}
+
+}  // namespace builtin_detail
+
+inline constexpr Scene kBuiltinScenes[] = {
+    builtin_detail::oscillator("oscillator-coulomb", "seed Eq. 9, constant mu0 = 0.25 from [0 3 0 6]: settles",
+                               friction_presets::oscillator_coulomb<double>(), 40.0),
+    builtin_detail::oscillator("oscillator-stribeck", "seed Eq. 9, Stribeck (sec. 3) from [0 3 0 6]: stick-slip cycle",
+                               friction_presets::oscillator_stribeck<double>(), 60.0),
+    builtin_detail::seed_case("seed-case1", "seed sec. 4: 100/50 N m, Table 1, Table 2 case 1, 3.3 kN clamping",
+                              friction_presets::table2_case1<double>()),
+    builtin_detail::seed_case("seed-case2", "seed sec. 4: 100/50 N m, Table 1, Table 2 case 2, 3.3 kN clamping",
+                              friction_presets::table2_case2<double>()),
+    builtin_detail::clamp_step(),
+    builtin_detail::tip_in(),
+    builtin_detail::gross_slip(),
+};
+inline constexpr int kBuiltinSceneCount = static_cast<int>(sizeof(kBuiltinScenes) / sizeof(kBuiltinScenes[0]));
+
+// nullptr if there is no built-in scene of that name.
+inline const Scene* find_builtin_scene(const char* name) {
+  for (const Scene& s : kBuiltinScenes)
+    if (std::strcmp(s.name, name) == 0) return &s;
+  return nullptr;
+}
+
+}  // namespace cvt

@@ -1,0 +1,226 @@
+#pragma once
+// A scene: features + parameters + input profiles + run settings
+// (docs/rom.md#scenes). Plain constexpr-friendly data, heap-free, so firmware
+// can hold scene tables in flash; the offline tool also reads them from TOML
+// files (tools/cvtplant/scene_file.cpp).
+#include <cstdint>
+
+#include "cvtplant/integrate/method.hpp"
+#include "cvtplant/math/detmath.hpp"
+#include "cvtplant/plant/rom_params.hpp"
+
+namespace cvt {
+
+enum class ProfileKind : std::uint8_t { constant, step, ramp, sine, table };
+inline constexpr int kMaxProfilePoints = 16;
+
+// An input as a function of time (docs/rom.md#profiles). Evaluated once per
+// frame in double (set-up class arithmetic; firmware normally takes its inputs
+// from the controller instead).
+struct Profile {
+  ProfileKind kind = ProfileKind::constant;
+  double value = 0;        // constant; step: before; ramp: start; sine: offset
+  double value2 = 0;       // step: after; ramp: end
+  double t0_s = 0;         // step time; ramp start; sine start
+  double t1_s = 0;         // ramp end
+  double amplitude = 0;    // sine
+  double freq_hz = 0;      // sine
+  int n = 0;               // table: points, linear interpolation, held outside
+  double t_s[kMaxProfilePoints] = {};
+  double v[kMaxProfilePoints] = {};
+
+  double at(double t) const {
+    switch (kind) {
+      case ProfileKind::constant: return value;
+      case ProfileKind::step: return t < t0_s ? value : value2;
+      case ProfileKind::ramp:
+        if (t <= t0_s) return value;
+        if (t >= t1_s) return value2;
+        return value + (value2 - value) * ((t - t0_s) / (t1_s - t0_s));
+      case ProfileKind::sine:
+        if (t < t0_s) return value;
+        return value + amplitude * dm::sin(6.28318530717958647692 * freq_hz * (t - t0_s));
+      case ProfileKind::table: {
+        if (n <= 0) return 0.0;
+        if (t <= t_s[0]) return v[0];
+        for (int i = 1; i < n; ++i)
+          if (t < t_s[i]) return v[i - 1] + (v[i] - v[i - 1]) * ((t - t_s[i - 1]) / (t_s[i] - t_s[i - 1]));
+        return v[n - 1];
+      }
+    }
+    return 0.0;
+  }
+};
+
+constexpr Profile constant_profile(double v) {
+  Profile p;
+  p.value = v;
+  return p;
+}
+constexpr Profile step_profile(double before, double after, double t_s) {
+  Profile p;
+  p.kind = ProfileKind::step;
+  p.value = before;
+  p.value2 = after;
+  p.t0_s = t_s;
+  return p;
+}
+constexpr Profile ramp_profile(double from, double to, double t0_s, double t1_s) {
+  Profile p;
+  p.kind = ProfileKind::ramp;
+  p.value = from;
+  p.value2 = to;
+  p.t0_s = t0_s;
+  p.t1_s = t1_s;
+  return p;
+}
+constexpr Profile sine_profile(double offset, double amplitude, double freq_hz, double t0_s) {
+  Profile p;
+  p.kind = ProfileKind::sine;
+  p.value = offset;
+  p.amplitude = amplitude;
+  p.freq_hz = freq_hz;
+  p.t0_s = t0_s;
+  return p;
+}
+
+enum class ScalarKind : std::uint8_t { f64, f32, q16_16 };
+inline constexpr const char* scalar_kind_name(ScalarKind s) {
+  return s == ScalarKind::f64 ? "double" : s == ScalarKind::f32 ? "float" : "fixed";
+}
+
+// Output groups logged besides t, omega1, omega2, F_ax, slip (docs/rom.md#outputs).
+namespace rom_log {
+inline constexpr std::uint32_t torques = 1u << 0;   // tau_in, tau_load, torque_transmitted
+inline constexpr std::uint32_t friction = 1u << 1;  // F1, F2, v_rel1, v_rel2, stick1, stick2
+inline constexpr std::uint32_t ratios = 1u << 2;    // speed_ratio, geometric_ratio
+inline constexpr std::uint32_t energy = 1u << 3;    // ledger and residual
+inline constexpr std::uint32_t states = 1u << 4;    // raw state vector
+inline constexpr std::uint32_t all = torques | friction | ratios | energy | states;
+}  // namespace rom_log
+
+struct Scene {
+  const char* name = "";
+  const char* summary = "";
+  std::uint32_t features = 0;
+  RomParams params{};
+  RomInitial initial{};
+  Profile tau_in{}, tau_load{}, clamp{};
+  double t_end_s = 10.0;
+  // The real-time default, chosen by measurement (docs/rom.md#real-time-integrator):
+  // ROS2 with 2 substeps per 1 ms frame is stable in every built-in scene.
+  double frame_s = 1e-3;
+  int substeps = 2;
+  Method method = Method::ros2;
+  ScalarKind scalar = ScalarKind::f64;
+  std::uint32_t log = rom_log::torques | rom_log::friction | rom_log::energy;
+};
+
+// First problem found in a scene, or ok (docs/rom.md#scene-validation). Field
+// names are the scene-file keys, so the file reader can point at the line.
+struct SceneIssue {
+  bool ok = true;
+  const char* field = "";
+  const char* message = "";
+};
+
+namespace scene_detail {
+constexpr bool fin(double v) { return v == v && v - v == 0.0; }
+constexpr SceneIssue bad(const char* field, const char* message) { return SceneIssue{false, field, message}; }
+
+inline SceneIssue check_profile(const Profile& p, const char* field, bool non_negative) {
+  if (!fin(p.value) || !fin(p.value2) || !fin(p.t0_s) || !fin(p.t1_s) || !fin(p.amplitude) || !fin(p.freq_hz))
+    return bad(field, "profile values must be finite");
+  if (p.t0_s < 0) return bad(field, "profile times must be >= 0");
+  switch (p.kind) {
+    case ProfileKind::constant:
+      if (non_negative && p.value < 0) return bad(field, "must be >= 0");
+      break;
+    case ProfileKind::step:
+      if (non_negative && (p.value < 0 || p.value2 < 0)) return bad(field, "must be >= 0");
+      break;
+    case ProfileKind::ramp:
+      if (!(p.t1_s > p.t0_s)) return bad(field, "ramp needs t1_s > t0_s");
+      if (non_negative && (p.value < 0 || p.value2 < 0)) return bad(field, "must be >= 0");
+      break;
+    case ProfileKind::sine:
+      if (p.freq_hz < 0) return bad(field, "sine frequency must be >= 0");
+      if (non_negative && p.value - (p.amplitude < 0 ? -p.amplitude : p.amplitude) < 0)
+        return bad(field, "sine must stay >= 0 (offset >= |amplitude|)");
+      break;
+    case ProfileKind::table:
+      if (p.n < 1 || p.n > kMaxProfilePoints) return bad(field, "table needs 1..16 points");
+      for (int i = 0; i < p.n; ++i) {
+        if (!fin(p.t_s[i]) || !fin(p.v[i])) return bad(field, "table values must be finite");
+        if (i > 0 && !(p.t_s[i] > p.t_s[i - 1])) return bad(field, "table times must increase strictly");
+        if (non_negative && p.v[i] < 0) return bad(field, "must be >= 0");
+      }
+      break;
+  }
+  return SceneIssue{};
+}
+}  // namespace scene_detail
+
+// Rejects non-physical or out-of-range parameters before a run.
+inline SceneIssue validate_scene(const Scene& s) {
+  using scene_detail::bad;
+  using scene_detail::fin;
+  const RomParams& p = s.params;
+  if ((s.features & ~rom_feature::all) != 0u) return bad("features", "unknown feature bit");
+  if (!(fin(p.r1_m) && p.r1_m > 0 && p.r1_m <= 2)) return bad("r1_m", "must be in (0, 2] m");
+  if (!(fin(p.r2_m) && p.r2_m > 0 && p.r2_m <= 2)) return bad("r2_m", "must be in (0, 2] m");
+  if (!(fin(p.beta0_rad) && p.beta0_rad >= 0 && p.beta0_rad < 1.4)) return bad("beta0_deg", "must be in [0, 80) deg");
+  if (!(fin(p.center_distance_m) && p.center_distance_m > (p.r2_m > p.r1_m ? p.r2_m - p.r1_m : p.r1_m - p.r2_m)))
+    return bad("center_distance_m", "must exceed |r2 - r1|");
+  if (!(fin(p.J1_kgm2) && p.J1_kgm2 > 0)) return bad("J1_kgm2", "must be > 0");
+  if (!(fin(p.J2_kgm2) && p.J2_kgm2 > 0)) return bad("J2_kgm2", "must be > 0");
+  if (!(fin(p.lump_mass_kg) && p.lump_mass_kg > 0)) return bad("lump_mass_kg", "must be > 0");
+  if (!(fin(p.k1_N_m) && p.k1_N_m > 0)) return bad("k1_N_m", "must be > 0");
+  if (!(fin(p.k2_N_m) && p.k2_N_m >= 0)) return bad("k2_N_m", "must be >= 0");
+  if (!(fin(p.c1_Ns_m) && p.c1_Ns_m >= 0)) return bad("c1_Ns_m", "must be >= 0");
+  if (!(fin(p.c2_Ns_m) && p.c2_Ns_m >= 0)) return bad("c2_Ns_m", "must be >= 0");
+  if (!(fin(p.stick_speed_m_s) && p.stick_speed_m_s > 0)) return bad("stick_speed_m_s", "must be > 0");
+  const FrictionParams<double>& f = p.friction;
+  if (!(fin(f.mu0) && f.mu0 > 0 && f.mu0 <= 2)) return bad("mu0", "must be in (0, 2]");
+  if (!(fin(f.lambda_s_m) && f.lambda_s_m > 0)) return bad("lambda_s_m", "must be > 0");
+  if (f.law == FrictionLaw::case1) {
+    if (!(fin(f.a) && f.a >= 0 && f.a <= f.mu0)) return bad("a", "must be in [0, mu0]");
+    if (!(fin(f.b_m_s) && f.b_m_s > 0)) return bad("b_m_s", "must be > 0");
+  }
+  if (f.law == FrictionLaw::case2) {
+    if (!(fin(f.sigma) && f.sigma >= 1)) return bad("sigma", "must be >= 1");
+    if (!(fin(f.kappa_s_m) && f.kappa_s_m > 0)) return bad("kappa_s_m", "must be > 0");
+    if (!(fin(f.chi_s_m) && f.chi_s_m > 0)) return bad("chi_s_m", "must be > 0");
+  }
+  if (s.features & rom_feature::axial) {
+    if (!(fin(p.actuator_tau_s) && p.actuator_tau_s > 0)) return bad("actuator_tau_s", "must be > 0");
+    if (!(fin(p.clamp_max_N) && p.clamp_max_N > 0)) return bad("clamp_max_N", "must be > 0");
+    if (!(fin(p.sheave_mass_kg) && p.sheave_mass_kg > 0)) return bad("sheave_mass_kg", "must be > 0");
+    if (!(fin(p.sheave_damping_Ns_m) && p.sheave_damping_Ns_m >= 0))
+      return bad("sheave_damping_Ns_m", "must be >= 0");
+    if (!(fin(p.K_ax_N_m) && p.K_ax_N_m > 0)) return bad("K_ax_N_m", "must be > 0");
+  }
+  if (s.features & rom_feature::road_load) {
+    if (!(fin(p.road_T0_Nm) && p.road_T0_Nm >= 0)) return bad("road_T0_Nm", "must be >= 0");
+    if (!(fin(p.road_cv_Nms_rad) && p.road_cv_Nms_rad >= 0)) return bad("road_cv_Nms_rad", "must be >= 0");
+    if (!(fin(p.road_ca_Nms2_rad2) && p.road_ca_Nms2_rad2 >= 0)) return bad("road_ca_Nms2_rad2", "must be >= 0");
+    if (!(fin(p.road_w_eps_rad_s) && p.road_w_eps_rad_s > 0)) return bad("road_w_eps_rad_s", "must be > 0");
+  }
+  if (s.features & rom_feature::polygon) {
+    if (!(fin(p.pitch_m) && p.pitch_m > 0 && p.pitch_m < 1.5 * p.r1_m)) return bad("pitch_m", "must be in (0, 1.5 r1)");
+  }
+  const RomInitial& x = s.initial;
+  if (!(fin(x.omega1_rad_s) && fin(x.omega2_rad_s) && fin(x.x1_m) && fin(x.xd1_m_s) && fin(x.x2_m) &&
+        fin(x.xd2_m_s) && fin(x.phase_rad)))
+    return bad("initial", "initial values must be finite");
+  if (SceneIssue i = scene_detail::check_profile(s.tau_in, "tau_in", false); !i.ok) return i;
+  if (SceneIssue i = scene_detail::check_profile(s.tau_load, "tau_load", false); !i.ok) return i;
+  if (SceneIssue i = scene_detail::check_profile(s.clamp, "clamp", true); !i.ok) return i;
+  if (!(fin(s.t_end_s) && s.t_end_s > 0 && s.t_end_s <= 1e5)) return bad("t_end_s", "must be in (0, 1e5] s");
+  if (!(fin(s.frame_s) && s.frame_s >= 1e-7 && s.frame_s <= s.t_end_s)) return bad("frame_s", "must be in [1e-7 s, t_end_s]");
+  if (s.substeps < 1 || s.substeps > 10000) return bad("substeps", "must be in 1..10000");
+  if ((s.log & ~rom_log::all) != 0u) return bad("log", "unknown log group");
+  return SceneIssue{};
+}
+
+}  // namespace cvt

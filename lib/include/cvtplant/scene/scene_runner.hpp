@@ -1,0 +1,54 @@
+#pragma once
+// Runs a scene frame by frame (docs/rom.md#frame-stepping). Heap-free: the
+// caller's callback sees the simulator after every frame (and at t = 0).
+#include <cstdint>
+
+#include "cvtplant/plant/rom_sim.hpp"
+#include "cvtplant/scene/scene.hpp"
+
+namespace cvt {
+
+inline RomSimConfig sim_config_of(const Scene& s) {
+  RomSimConfig c;
+  c.method = s.method;
+  c.substeps = s.substeps;
+  c.frame_s = s.frame_s;
+  return c;
+}
+
+template <class T>
+RomInputs<T> scene_inputs_at(const Scene& s, double t) {
+  RomInputs<T> u;
+  u.tau_in_Nm = T(s.tau_in.at(t));
+  u.tau_load_Nm = T(s.tau_load.at(t));
+  u.clamp_N = T(s.clamp.at(t));
+  return u;
+}
+
+// Number of frames of a scene: t_end rounded to whole frames.
+inline long scene_frames(const Scene& s) {
+  const double n = s.t_end_s / s.frame_s;
+  return static_cast<long>(n + 0.5);
+}
+
+// on_frame(long frame, double t_s, const RomSimulator<T, F>&) -> bool
+// (false stops the run). Returns the fault state at the end.
+template <class T, std::uint32_t F, class OnFrame>
+RomFault run_scene(const Scene& s, const RomSimConfig& cfg, OnFrame&& on_frame) {
+  RomSimulator<T, F> sim(s.params, cfg);
+  sim.reset(s.initial, scene_inputs_at<T>(s, 0.0));
+  if (!on_frame(0L, 0.0, sim)) return sim.fault();
+  const long n = static_cast<long>(s.t_end_s / cfg.frame_s + 0.5);
+  for (long i = 0; i < n; ++i) {
+    // Inputs sampled at the start of the frame and held (zero-order hold).
+    const double t0 = static_cast<double>(i) * cfg.frame_s;
+    if (sim.step_frame(scene_inputs_at<T>(s, t0)) != RomFault::none) {
+      on_frame(i + 1, t0 + cfg.frame_s, sim);
+      return sim.fault();
+    }
+    if (!on_frame(i + 1, static_cast<double>(i + 1) * cfg.frame_s, sim)) break;
+  }
+  return sim.fault();
+}
+
+}  // namespace cvt

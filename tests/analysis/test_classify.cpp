@@ -1,0 +1,41 @@
+// The verdict (docs/analysis.md#classify).
+#include <doctest/doctest.h>
+
+#include "cvtplant/analysis/classify.hpp"
+#include "signals.hpp"
+
+using namespace cvt::analysis;
+
+TEST_CASE("classify: sine -> periodic") {
+  CHECK(classify(testsig::sine(5000, 37.3), {}).classification == "periodic");
+}
+
+TEST_CASE("classify: two incommensurate tones -> quasi_periodic") {
+  std::vector<double> q(8000);
+  for (std::size_t i = 0; i < q.size(); ++i) q[i] = std::sin(0.2 * i) + 0.6 * std::sin(0.2 * std::sqrt(2.0) * i + 1);
+  CHECK(classify(q, {}).classification == "quasi_periodic");
+}
+
+TEST_CASE("classify: white noise is never called chaotic") {
+  for (unsigned seed : {1u, 2u, 3u}) {
+    const Classification c = classify(testsig::white_noise(4000, seed), {});
+    CHECK(c.classification != "chaotic");
+    CHECK_FALSE(c.deterministic);
+    CHECK(c.rqa.det < 0.5);
+    CHECK(c.t01.k_median > 0.8);  // the 0-1 test alone would have been fooled
+  }
+}
+
+TEST_CASE("classify: Lorenz x -> chaotic") {
+  ClassifyOptions o;
+  o.dt = 0.01;
+  const Classification c = classify(testsig::lorenz_x(10000), o);
+  CHECK(c.classification == "chaotic");
+  CHECK(c.lle.fit.slope == doctest::Approx(0.9056).epsilon(0.15));
+}
+
+TEST_CASE("classify: a damped oscillation -> fixed_point") {
+  std::vector<double> d(4000);
+  for (std::size_t i = 0; i < d.size(); ++i) d[i] = std::exp(-0.003 * i) * std::sin(0.3 * i);
+  CHECK(classify(d, {}).classification == "fixed_point");
+}

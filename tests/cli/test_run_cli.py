@@ -1,0 +1,132 @@
+#!/usr/bin/env python3
+"""`cvtplant run` / `cvtplant scenes` as a user drives them (docs/rom.md)."""
+import csv
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+CLI = sys.argv.pop(1) if len(sys.argv) > 1 else "cvtplant"
+HERE = os.path.dirname(os.path.abspath(__file__))
+SCENES = os.path.join(HERE, "..", "..", "tools", "scenes")
+BUILTIN = ["oscillator-coulomb", "oscillator-stribeck", "seed-case1", "seed-case2", "clamp-step", "tip-in",
+           "gross-slip"]
+
+
+def run(*args):
+    return subprocess.run([CLI, *args], capture_output=True, text=True, timeout=600)
+
+
+def write(d, name, text):
+    path = os.path.join(d, name)
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+class Scenes(unittest.TestCase):
+    def test_one_line_per_builtin(self):
+        r = run("scenes")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        lines = r.stdout.strip().splitlines()
+        self.assertEqual([l.split()[0] for l in lines], BUILTIN)
+
+    def test_json(self):
+        r = run("scenes", "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        j = json.loads(r.stdout)
+        self.assertEqual([s["name"] for s in j], BUILTIN)
+        self.assertTrue(all(s["integrator"] == "ros2" and s["frame_s"] == 1e-3 for s in j))
+
+
+class Run(unittest.TestCase):
+    def test_csv_and_json(self):
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "out.csv")
+            r = run("run", "--scene", "tip-in", "--t-end", "2", "--csv", path, "--json")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            j = json.loads(r.stdout)
+            with open(path) as f:
+                rows = list(csv.reader(f))
+        self.assertEqual(rows[0][:5], ["t", "omega1", "omega2", "F_ax", "slip"])
+        self.assertEqual(len(rows), 1 + 2001)
+        self.assertEqual(j["fault"], "none")
+        self.assertEqual(j["frames"], 2000)
+        self.assertEqual(j["features"], "axial,road_load")
+        self.assertLess(abs(j["energy"]["residual_relative"]), 1e-4)
+        self.assertGreater(j["ns_per_frame"], 0)
+        # The axial force follows the 4 kN command.
+        self.assertAlmostEqual(j["final"]["F_ax_N"], 4000.0, delta=1.0)
+
+    def test_every_builtin_runs_without_fault(self):
+        for name in BUILTIN:
+            r = run("run", "--scene", name, "--t-end", "3", "--json")
+            self.assertEqual(r.returncode, 0, name + r.stderr)
+            self.assertEqual(json.loads(r.stdout)["fault"], "none", name)
+
+    def test_scalars(self):
+        for scalar in ("double", "float"):
+            r = run("run", "--scene", "seed-case1", "--t-end", "2", "--scalar", scalar, "--json")
+            self.assertEqual(r.returncode, 0, scalar + r.stderr)
+            self.assertEqual(json.loads(r.stdout)["scalar"], scalar)
+
+    def test_unstable_integrator_is_a_fault_exit_1(self):
+        r = run("run", "--scene", "seed-case2", "--integrator", "rk4", "--substeps", "1", "--json")
+        self.assertEqual(r.returncode, 1)
+        self.assertIn(json.loads(r.stdout)["fault"], ("energy-growth", "state-non-finite"))
+
+    def test_example_scene_files(self):
+        for name in sorted(os.listdir(SCENES)):
+            r = run("run", "--scene", os.path.join(SCENES, name), "--t-end", "2", "--json")
+            self.assertEqual(r.returncode, 0, name + r.stderr)
+
+
+class BadInput(unittest.TestCase):
+    def assert_usage(self, r, *parts):
+        self.assertEqual(r.returncode, 2, r.stdout + r.stderr)
+        self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
+        self.assertTrue(r.stderr.startswith("cvtplant run: error: "), r.stderr)
+        for p in parts:
+            self.assertIn(p, r.stderr)
+
+    def test_unknown_scene(self):
+        self.assert_usage(run("run", "--scene", "no-such-scene"), "no-such-scene")
+
+    def test_bad_flags(self):
+        self.assertEqual(run("run", "--scene", "tip-in", "--integrator", "nope").returncode, 2)
+        self.assertEqual(run("run", "--scene", "tip-in", "--dt", "-1").returncode, 2)
+        self.assertEqual(run("run", "--scene", "tip-in", "--substeps", "0").returncode, 2)
+
+    def test_syntax_error_names_file_and_line(self):
+        with tempfile.TemporaryDirectory() as d:
+            p = write(d, "s.toml", 'base = "tip-in"\n\nt_end_s = = 3\n')
+            self.assert_usage(run("run", "--scene", p), p + ":3:", "syntax")
+
+    def test_unknown_field_names_file_line_field(self):
+        with tempfile.TemporaryDirectory() as d:
+            p = write(d, "s.toml", 'base = "tip-in"\n[params]\nr1_m = 0.07\nJ3_kgm2 = 1.0\n')
+            self.assert_usage(run("run", "--scene", p), p + ":4:", "params.J3_kgm2", "unknown field")
+
+    def test_out_of_range_names_file_line_field(self):
+        with tempfile.TemporaryDirectory() as d:
+            p = write(d, "s.toml", 'base = "tip-in"\n[params]\nr1_m = 0.07\nJ1_kgm2 = -1.0\n')
+            self.assert_usage(run("run", "--scene", p), p + ":4:", "params.J1_kgm2", "> 0")
+            p = write(d, "f.toml", 'base = "tip-in"\n[friction]\nmu0 = 5.0\n')
+            self.assert_usage(run("run", "--scene", p), p + ":3:", "friction.mu0")
+            p = write(d, "c.toml", 'base = "tip-in"\n[inputs]\n\nclamp = -3.0\n')
+            self.assert_usage(run("run", "--scene", p), p + ":4:", "clamp", ">= 0")
+
+    def test_wrong_type_and_unknown_names(self):
+        with tempfile.TemporaryDirectory() as d:
+            p = write(d, "t.toml", 'base = "tip-in"\nt_end_s = "long"\n')
+            self.assert_usage(run("run", "--scene", p), p + ":2:", "t_end_s", "number")
+            p = write(d, "n.toml", 'features = ["axial", "warp_drive"]\n')
+            self.assert_usage(run("run", "--scene", p), p + ":1:", "features", "warp_drive")
+            p = write(d, "k.toml", 'base = "tip-in"\n[inputs]\ntau_in = { kind = "square", value = 1 }\n')
+            self.assert_usage(run("run", "--scene", p), p + ":3:", "kind")
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,516 @@
+// `cvtplant analyze <tool>`: nonlinear time-series analysis of one CSV column
+// (docs/analysis.md): ami, fnn, cao, lle, rqa, recurrence, test01, classify;
+// plus sweep / merge / figures / trajectory for scene studies.
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <stdexcept>
+
+#include "commands.hpp"
+#include "cvtplant/analysis/classify.hpp"
+#include "cvtplant/analysis/csv.hpp"
+#include "cvtplant/analysis/embedding.hpp"
+#include "cvtplant/analysis/errors.hpp"
+#include "cvtplant/analysis/figures.hpp"
+#include "cvtplant/analysis/lle.hpp"
+#include "cvtplant/analysis/rqa.hpp"
+#include "cvtplant/analysis/series.hpp"
+#include "cvtplant/analysis/sweep.hpp"
+#include "cvtplant/analysis/systems.hpp"
+#include "cvtplant/analysis/test01.hpp"
+#include "io_util.hpp"
+#include "registry.hpp"
+
+namespace {
+
+using namespace cvt::analysis;
+using nlohmann::json;
+
+// Options shared by every series tool.
+struct SeriesArgs {
+  std::string csv, column;
+  double dt = 1.0;
+  long discard = 0;
+  bool json = false;
+  int tau = -1, m = -1, theiler = -1;
+};
+
+void add_series_options(CLI::App* c, SeriesArgs& a, bool embedding) {
+  c->add_option("--csv", a.csv, "input CSV with a header row")->required();
+  c->add_option("--column", a.column, "column name")->required();
+  c->add_option("--dt", a.dt, "sample interval [s] (exponents are per second)");
+  c->add_option("--discard", a.discard, "drop this many leading samples (transient)");
+  c->add_flag("--json", a.json, "machine-readable output");
+  if (embedding) {
+    c->add_option("--tau", a.tau, "delay [samples] (default: first AMI minimum)");
+    c->add_option("--m", a.m, "embedding dimension (default: FNN)");
+    c->add_option("--theiler", a.theiler, "Theiler window w [samples], pairs |i-j| <= w excluded (default: mean period)");
+  }
+}
+
+// Loads, trims and z-scores the column (docs/analysis.md#input). Every
+// analysis works on the normalised series, as the seed does.
+std::vector<double> load(const SeriesArgs& a, std::size_t min_points) {
+  if (!(a.dt > 0) || !std::isfinite(a.dt)) throw cvtcli::UsageError{"--dt must be a positive number"};
+  if (a.discard < 0) throw cvtcli::UsageError{"--discard must be >= 0"};
+  CsvColumn c = read_csv_column(a.csv, a.column);
+  if (static_cast<std::size_t>(a.discard) >= c.values.size())
+    throw cvtcli::UsageError{"--discard " + std::to_string(a.discard) + " removes all " + std::to_string(c.values.size()) +
+                             " samples"};
+  std::vector<double> x(c.values.begin() + a.discard, c.values.end());
+  validate_series(x, min_points, "column '" + a.column + "'");
+  return zscore(x);
+}
+
+int pick_tau(const SeriesArgs& a, const std::vector<double>& x) {
+  if (a.tau > 0) return a.tau;
+  if (a.tau == 0 || a.tau < -1) throw cvtcli::UsageError{"--tau must be >= 1"};
+  return average_mutual_information(x, std::min<int>(static_cast<int>(x.size() / 10), 500)).tau;
+}
+int pick_theiler(const SeriesArgs& a, const std::vector<double>& x) {
+  if (a.theiler < -1) throw cvtcli::UsageError{"--theiler must be >= 0"};
+  return a.theiler >= 0 ? a.theiler : default_theiler(x);
+}
+int pick_m(const SeriesArgs& a, const std::vector<double>& x, int tau, int w) {
+  if (a.m > 0) return a.m;
+  if (a.m == 0 || a.m < -1) throw cvtcli::UsageError{"--m must be >= 1"};
+  FnnOptions fo;
+  fo.tau = tau;
+  fo.theiler = w;
+  return std::max(2, false_nearest_neighbours(x, fo).dimension);
+}
+
+json fit_json(const ScalingFit& f) {
+  return {{"slope", f.slope},          {"ci95", f.ci95},         {"slope_se", f.slope_se},
+          {"window_spread", f.window_spread}, {"r2", f.r2},      {"k_begin", f.k_begin},
+          {"k_end", f.k_end},          {"growth_efolds", f.growth_efolds}, {"scaling_region", f.scaling_region}};
+}
+json lle_json(const LleResult& r, const char* method, int m, int tau) {
+  return {{"method", method}, {"lambda", r.fit.slope}, {"ci95", r.fit.ci95}, {"fit", fit_json(r.fit)},
+          {"m", m},           {"tau", tau},            {"theiler", r.theiler}, {"k_max", r.k_max},
+          {"eps", r.eps},     {"mean_neighbours", r.mean_neighbours}, {"points", r.points},
+          {"divergence", r.divergence}};
+}
+json rqa_json(const RqaResult& r, int m, int tau, const RqaOptions& o) {
+  return {{"RR", r.rr},   {"DET", r.det},   {"L", r.l_mean},    {"Lmax", r.lmax}, {"ENTR", r.entr},
+          {"LAM", r.lam}, {"TT", r.tt},     {"Vmax", r.vmax},   {"eps", r.eps},   {"theiler", r.theiler},
+          {"lmin", o.lmin}, {"vmin", o.vmin}, {"m", m},          {"tau", tau},     {"points", r.n},
+          {"rule", "||y_i - y_j||_2 <= eps on the z-scored series; pairs |i-j| <= theiler excluded (line of identity never counted)"}};
+}
+
+// Runs a body, turning library errors into the CLI's exit codes.
+template <class F>
+int guarded(F&& f) {
+  try {
+    return f();
+  } catch (const InputError& e) {
+    throw cvtcli::UsageError{e.what()};
+  } catch (const std::invalid_argument& e) {
+    throw cvtcli::UsageError{e.what()};
+  } catch (const std::runtime_error& e) {
+    throw cvtcli::RunError{e.what()};
+  }
+}
+
+cvtcli::Action register_analyze(CLI::App& app) {
+  auto* an = app.add_subcommand("analyze", "nonlinear time-series analysis of a CSV column, sweeps and figures");
+  an->require_subcommand(1);
+  std::vector<std::pair<CLI::App*, std::function<int()>>> tools;
+
+  {  // ami
+    auto a = std::make_shared<SeriesArgs>();
+    auto lag = std::make_shared<int>(-1);
+    auto bins = std::make_shared<int>(0);
+    auto* c = an->add_subcommand("ami", "average mutual information and autocorrelation; delay choice");
+    add_series_options(c, *a, false);
+    c->add_option("--max-lag", *lag, "largest lag [samples] (default min(N/10, 500))");
+    c->add_option("--bins", *bins, "histogram bins (default cbrt(N) clamped to 8..64)");
+    tools.push_back({c, [a, lag, bins] {
+                       const auto x = load(*a, 50);
+                       const int L = *lag > 0 ? *lag : std::min<int>(static_cast<int>(x.size() / 10), 500);
+                       const AmiResult r = average_mutual_information(x, L, *bins);
+                       json j{{"tau", r.tau}, {"method", r.method}, {"tau_ami_first_minimum", r.tau_ami},
+                              {"tau_acf_zero", r.tau_acf_zero}, {"bins", r.bins}, {"ami", r.ami}, {"acf", r.acf}};
+                       if (a->json)
+                         cvtcli::print_json(j);
+                       else
+                         std::printf("tau = %d (%s); first AMI minimum %d, first ACF zero %d\n", r.tau, r.method,
+                                     r.tau_ami, r.tau_acf_zero);
+                       return 0;
+                     }});
+  }
+  {  // fnn
+    auto a = std::make_shared<SeriesArgs>();
+    auto o = std::make_shared<FnnOptions>();
+    auto* c = an->add_subcommand("fnn", "false nearest neighbours (Kennel: Rtol=10, Atol=2)");
+    add_series_options(c, *a, true);
+    c->add_option("--m-max", o->m_max, "largest dimension tested");
+    c->add_option("--rtol", o->rtol, "Kennel criterion 1 threshold");
+    c->add_option("--atol", o->atol, "Kennel criterion 2 threshold");
+    c->add_option("--threshold", o->threshold, "dimension = first m with FNN fraction <= threshold");
+    tools.push_back({c, [a, o] {
+                       const auto x = load(*a, 100);
+                       FnnOptions fo = *o;
+                       fo.tau = pick_tau(*a, x);
+                       fo.theiler = pick_theiler(*a, x);
+                       if (fo.m_max < 1 || fo.m_max > 30) throw cvtcli::UsageError{"--m-max must be in 1..30"};
+                       const FnnResult r = false_nearest_neighbours(x, fo);
+                       json j{{"dimension", r.dimension}, {"reached", r.reached}, {"tau", fo.tau},
+                              {"theiler", r.theiler},     {"rtol", fo.rtol},      {"atol", fo.atol},
+                              {"threshold", fo.threshold}, {"m", r.m},            {"fraction", r.fraction},
+                              {"fraction_rtol", r.fraction_rtol}, {"fraction_atol", r.fraction_atol}};
+                       if (a->json) {
+                         cvtcli::print_json(j);
+                       } else {
+                         for (std::size_t i = 0; i < r.m.size(); ++i)
+                           std::printf("m=%2d  FNN %.4f (Rtol %.4f, Atol %.4f)\n", r.m[i], r.fraction[i],
+                                       r.fraction_rtol[i], r.fraction_atol[i]);
+                         std::printf("dimension %d%s (tau %d, Theiler %d)\n", r.dimension,
+                                     r.reached ? "" : " (threshold not reached)", fo.tau, r.theiler);
+                       }
+                       return 0;
+                     }});
+  }
+  {  // cao
+    auto a = std::make_shared<SeriesArgs>();
+    auto o = std::make_shared<CaoOptions>();
+    auto* c = an->add_subcommand("cao", "Cao's E1/E2 embedding dimension");
+    add_series_options(c, *a, true);
+    c->add_option("--m-max", o->m_max, "largest dimension tested");
+    c->add_option("--e1-threshold", o->e1_threshold, "dimension = first m with E1(m) >= threshold");
+    tools.push_back({c, [a, o] {
+                       const auto x = load(*a, 100);
+                       CaoOptions co = *o;
+                       co.tau = pick_tau(*a, x);
+                       co.theiler = pick_theiler(*a, x);
+                       if (co.m_max < 1 || co.m_max > 30) throw cvtcli::UsageError{"--m-max must be in 1..30"};
+                       const CaoResult r = cao(x, co);
+                       json j{{"dimension", r.dimension}, {"reached", r.reached}, {"tau", co.tau}, {"theiler", r.theiler},
+                              {"m", r.m}, {"E1", r.e1}, {"E2", r.e2}};
+                       if (a->json) {
+                         cvtcli::print_json(j);
+                       } else {
+                         for (std::size_t i = 0; i < r.m.size(); ++i)
+                           std::printf("m=%2d  E1 %.4f  E2 %.4f\n", r.m[i], r.e1[i], r.e2[i]);
+                         std::printf("dimension %d\n", r.dimension);
+                       }
+                       return 0;
+                     }});
+  }
+  {  // lle
+    auto a = std::make_shared<SeriesArgs>();
+    auto method = std::make_shared<std::string>("rosenstein");
+    auto o = std::make_shared<LleOptions>();
+    auto* c = an->add_subcommand("lle", "largest Lyapunov exponent (Rosenstein or Kantz) with automatic scaling region");
+    add_series_options(c, *a, true);
+    c->add_option("--method", *method, "rosenstein | kantz | both")->check(CLI::IsMember({"rosenstein", "kantz", "both"}));
+    c->add_option("--k-max", o->k_max, "divergence horizon [samples] (default 5 mean periods)");
+    c->add_option("--eps", o->eps, "Kantz radius in std units (default: median 10th-neighbour distance)");
+    tools.push_back({c, [a, method, o] {
+                       const auto x = load(*a, 100);
+                       LleOptions lo = *o;
+                       lo.dt = a->dt;
+                       lo.tau = pick_tau(*a, x);
+                       lo.theiler = pick_theiler(*a, x);
+                       lo.m = pick_m(*a, x, lo.tau, lo.theiler);
+                       json j = json::object();
+                       if (*method != "kantz") j["rosenstein"] = lle_json(lle_rosenstein(x, lo), "rosenstein", lo.m, lo.tau);
+                       if (*method != "rosenstein") j["kantz"] = lle_json(lle_kantz(x, lo), "kantz", lo.m, lo.tau);
+                       if (a->json) {
+                         cvtcli::print_json(j);
+                       } else {
+                         for (auto& [k, v] : j.items())
+                           std::printf("%s: lambda = %.6g +- %.2g per unit time (m %d, tau %d, Theiler %d, fit samples "
+                                       "%d..%d, R^2 %.4f, scaling region %s)\n",
+                                       k.c_str(), v["lambda"].get<double>(), v["ci95"].get<double>(), lo.m, lo.tau,
+                                       v["theiler"].get<int>(), v["fit"]["k_begin"].get<int>(),
+                                       v["fit"]["k_end"].get<int>(), v["fit"]["r2"].get<double>(),
+                                       v["fit"]["scaling_region"].get<bool>() ? "yes" : "no");
+                       }
+                       return 0;
+                     }});
+  }
+  {  // rqa + recurrence
+    for (int png = 0; png <= 1; ++png) {
+      auto a = std::make_shared<SeriesArgs>();
+      auto o = std::make_shared<RqaOptions>();
+      auto path = std::make_shared<std::string>();
+      auto pixels = std::make_shared<int>(1000);
+      auto* c = png ? an->add_subcommand("recurrence", "recurrence plot as PNG (plus the RQA measures)")
+                    : an->add_subcommand("rqa", "recurrence quantification: RR DET L Lmax ENTR LAM TT (streaming)");
+      add_series_options(c, *a, true);
+      c->add_option("--eps", o->eps, "recurrence radius in std units of the series (default: from --rr)");
+      c->add_option("--rr", o->target_rr, "target recurrence rate when --eps is not given");
+      c->add_option("--lmin", o->lmin, "minimal diagonal line");
+      c->add_option("--vmin", o->vmin, "minimal vertical line");
+      if (png) {
+        c->add_option("--png", *path, "output PNG file")->required();
+        c->add_option("--pixels", *pixels, "image side in pixels (max)");
+      }
+      const bool is_png = png != 0;
+      tools.push_back({c, [a, o, path, pixels, is_png] {
+                         const auto x = load(*a, 100);
+                         const int tau = pick_tau(*a, x);
+                         const int w = a->theiler >= 0 ? a->theiler : 0;
+                         if (a->theiler < -1) throw cvtcli::UsageError{"--theiler must be >= 0"};
+                         const int m = pick_m(*a, x, tau, pick_theiler(*a, x));
+                         RqaOptions ro = *o;
+                         ro.theiler = w;
+                         const Embedding e = delay_embed(x, m, tau);
+                         const RqaResult r = rqa(e, ro);
+                         json j = rqa_json(r, m, tau, ro);
+                         if (is_png) {
+                           write_recurrence_png(e, r.eps, -1, *path, *pixels);
+                           j["png"] = *path;
+                         }
+                         if (a->json) {
+                           cvtcli::print_json(j);
+                         } else {
+                           std::printf("RR %.4f DET %.4f L %.3f Lmax %ld ENTR %.3f LAM %.4f TT %.3f (eps %.4g, m %d, tau "
+                                       "%d, Theiler %d)\n",
+                                       r.rr, r.det, r.l_mean, r.lmax, r.entr, r.lam, r.tt, r.eps, m, tau, w);
+                           if (is_png) std::printf("wrote %s\n", path->c_str());
+                         }
+                         return 0;
+                       }});
+    }
+  }
+  {  // test01
+    auto a = std::make_shared<SeriesArgs>();
+    auto o = std::make_shared<Test01Options>();
+    o->subsample = -1;
+    auto* c = an->add_subcommand("test01", "Gottwald-Melbourne 0-1 test for chaos (K ~ 0 regular, ~ 1 chaotic or noise)");
+    add_series_options(c, *a, false);
+    c->add_option("--subsample", o->subsample, "use every n-th sample (default: the AMI delay)");
+    c->add_option("--n-c", o->n_c, "number of random frequencies c");
+    c->add_option("--max-points", o->max_points, "points used after subsampling");
+    tools.push_back({c, [a, o] {
+                       const auto x = load(*a, 100);
+                       Test01Options to = *o;
+                       if (to.subsample == -1) to.subsample = pick_tau(*a, x);
+                       const Test01Result r = test01(x, to);
+                       json j{{"K", r.k_median}, {"K_q25", r.k_q25}, {"K_q75", r.k_q75}, {"points", r.points},
+                              {"subsample", r.subsample}, {"n_c", to.n_c}};
+                       if (a->json)
+                         cvtcli::print_json(j);
+                       else
+                         std::printf("K = %.4f (IQR %.4f..%.4f, %d points, subsample %d)\n", r.k_median, r.k_q25,
+                                     r.k_q75, r.points, r.subsample);
+                       return 0;
+                     }});
+  }
+  {  // classify
+    auto a = std::make_shared<SeriesArgs>();
+    auto* c = an->add_subcommand("classify", "verdict: fixed_point / periodic / quasi_periodic / chaotic / inconclusive");
+    add_series_options(c, *a, true);
+    tools.push_back({c, [a] {
+                       if (!(a->dt > 0) || !std::isfinite(a->dt)) throw cvtcli::UsageError{"--dt must be a positive number"};
+                       CsvColumn col = read_csv_column(a->csv, a->column);
+                       if (a->discard < 0 || static_cast<std::size_t>(a->discard) >= col.values.size())
+                         throw cvtcli::UsageError{"--discard must be in 0..N-1"};
+                       std::vector<double> x(col.values.begin() + a->discard, col.values.end());
+                       ClassifyOptions co;
+                       co.dt = a->dt;
+                       co.tau = a->tau;
+                       co.m = a->m;
+                       co.theiler = a->theiler;
+                       const Classification r = classify(x, co);
+                       json j{{"classification", r.classification}, {"confidence", r.confidence}, {"evidence", r.reasons}};
+                       if (r.classification != "fixed_point" || r.tau > 0) {
+                         j["tau"] = r.tau;
+                         j["m"] = r.m;
+                         j["theiler"] = r.theiler;
+                         j["deterministic"] = r.deterministic;
+                         j["fnn"] = {{"m", r.fnn.m}, {"fraction", r.fnn.fraction}};
+                         j["rqa"] = {{"RR", r.rqa.rr}, {"DET", r.rqa.det}, {"LAM", r.rqa.lam}, {"L", r.rqa.l_mean},
+                                     {"ENTR", r.rqa.entr}};
+                         j["lle"] = {{"lambda", r.lle.fit.slope}, {"ci95", r.lle.fit.ci95}, {"fit", fit_json(r.lle.fit)}};
+                         j["test01"] = {{"K", r.t01.k_median}, {"K_q25", r.t01.k_q25}, {"K_q75", r.t01.k_q75},
+                                        {"subsample", r.t01.subsample}};
+                         j["spectrum"] = {{"fundamental_cycles_per_sample", r.peaks.fundamental},
+                                          {"harmonic", r.peaks.harmonic},
+                                          {"worst_harmonic_error", r.peaks.worst_harmonic_error},
+                                          {"peaks_cycles_per_sample", r.peaks.freq}};
+                       }
+                       j["amplitude_decay"] = r.amplitude_decay;
+                       if (a->json) {
+                         cvtcli::print_json(j);
+                       } else {
+                         std::printf("classification: %s (%s)\n", r.classification.c_str(), r.confidence.c_str());
+                         for (const auto& s : r.reasons) std::printf("  - %s\n", s.c_str());
+                       }
+                       return 0;
+                     }});
+  }
+  {  // trajectory
+    struct T {
+      std::string scene, x0, out = "-";
+      std::vector<std::string> params;
+      double dt = -1, t_transient = 0, t_end = 10, sample_dt = 0.001;
+    };
+    auto a = std::make_shared<T>();
+    auto* c = an->add_subcommand("trajectory", "simulate a scene (RK4) and write its states as CSV");
+    c->add_option("--scene", a->scene, "scene name (see cvtplant lyapunov --list)")->required();
+    c->add_option("--x0", a->x0, "initial state, comma-separated");
+    c->add_option("--param", a->params, "name=value (repeatable)");
+    c->add_option("--dt", a->dt, "RK4 step [s] (default: the scene's)");
+    c->add_option("--t-transient", a->t_transient, "time not written [s]");
+    c->add_option("--t-end", a->t_end, "time written [s] (maps: iterations)");
+    c->add_option("--sample-dt", a->sample_dt, "output interval [s]");
+    c->add_option("--out", a->out, "output CSV ('-' = stdout)");
+    tools.push_back({c, [a] {
+                       const Scene& s = find_scene(a->scene);
+                       Params over;
+                       for (const auto& kv : a->params) {
+                         const std::size_t eq = kv.find('=');
+                         if (eq == std::string::npos) throw cvtcli::UsageError{"--param '" + kv + "': expected name=value"};
+                         over[kv.substr(0, eq)] = cvtcli::parse_finite(kv.substr(eq + 1), "--param");
+                       }
+                       const Params p = merge_params(s, over);
+                       const auto x0 = a->x0.empty() ? s.default_x0 : cvtcli::parse_list(a->x0, s.dim, "--x0");
+                       const double dt = a->dt > 0 ? a->dt : s.defaults.dt;
+                       if (!(a->t_end > 0) || !(a->sample_dt > 0) || a->t_transient < 0)
+                         throw cvtcli::UsageError{"need --t-end > 0, --sample-dt > 0, --t-transient >= 0"};
+                       const auto rows = s.trajectory(p, x0, dt, a->t_transient, a->t_end, a->sample_dt);
+                       std::FILE* f = cvtcli::open_output(a->out);
+                       std::fprintf(f, "t");
+                       for (const auto& n : s.state_names) std::fprintf(f, ",%s", n.c_str());
+                       std::fprintf(f, "\n");
+                       const std::size_t n = rows.size() / s.dim;
+                       const double step = s.is_map ? 1.0 : std::max(1L, std::lround(a->sample_dt / dt)) * dt;
+                       for (std::size_t i = 0; i < n; ++i) {
+                         std::fprintf(f, "%.10g", a->t_transient + (i + 1) * step);
+                         for (int k = 0; k < s.dim; ++k) std::fprintf(f, ",%.12g", rows[i * s.dim + k]);
+                         std::fprintf(f, "\n");
+                       }
+                       cvtcli::close_output(f);
+                       return 0;
+                     }});
+  }
+  {  // sweep
+    struct S {
+      std::string scene, a1, a2, x0, shard = "0/1", out = "-";
+      std::vector<std::string> params;
+      double dt = -1, t_transient = -1, t_end = -1, t_peaks = 20;
+      int jobs = 0, state = 0;
+    };
+    auto a = std::make_shared<S>();
+    auto* c = an->add_subcommand("sweep", "parameter sweep: spectrum + bifurcation data, parallel and shardable");
+    c->add_option("--scene", a->scene, "scene name")->required();
+    c->add_option("--axis", a->a1, "first axis name=lo:hi:n")->required();
+    c->add_option("--axis2", a->a2, "optional second axis name=lo:hi:n");
+    c->add_option("--param", a->params, "fixed override name=value (repeatable)");
+    c->add_option("--x0", a->x0, "initial state");
+    c->add_option("--dt", a->dt, "RK4 step [s]");
+    c->add_option("--t-transient", a->t_transient, "discarded time [s]");
+    c->add_option("--t-end", a->t_end, "accumulation time [s]");
+    c->add_option("--t-peaks", a->t_peaks, "time after the spectrum run for bifurcation peaks [s]");
+    c->add_option("--state", a->state, "state index whose local maxima are recorded");
+    c->add_option("--shard", a->shard, "i/N: run points k with k % N == i (for array jobs)");
+    c->add_option("--jobs", a->jobs, "threads (default: all cores)");
+    c->add_option("--out", a->out, "output CSV ('-' = stdout)");
+    tools.push_back({c, [a] {
+                       SweepSpec sp;
+                       sp.scene = a->scene;
+                       const Scene& s = find_scene(a->scene);
+                       for (const auto& kv : a->params) {
+                         const std::size_t eq = kv.find('=');
+                         if (eq == std::string::npos) throw cvtcli::UsageError{"--param '" + kv + "': expected name=value"};
+                         sp.overrides[kv.substr(0, eq)] = cvtcli::parse_finite(kv.substr(eq + 1), "--param");
+                       }
+                       sp.a1 = parse_axis(a->a1);
+                       if (!a->a2.empty()) {
+                         sp.has_a2 = true;
+                         sp.a2 = parse_axis(a->a2);
+                       }
+                       if (!a->x0.empty()) sp.x0 = cvtcli::parse_list(a->x0, s.dim, "--x0");
+                       sp.benettin = s.defaults;
+                       if (a->dt > 0) sp.benettin.dt = a->dt;
+                       if (a->t_transient >= 0) sp.benettin.t_transient = a->t_transient;
+                       if (a->t_end > 0) sp.benettin.t_end = a->t_end;
+                       sp.t_peaks = a->t_peaks;
+                       sp.bif_state = a->state;
+                       int si = 0, sn = 1;
+                       if (std::sscanf(a->shard.c_str(), "%d/%d", &si, &sn) != 2)
+                         throw cvtcli::UsageError{"--shard must look like i/N"};
+                       const auto pts = run_sweep(sp, si, sn, a->jobs);
+                       std::FILE* f = cvtcli::open_output(a->out);
+                       write_sweep_csv(f, sp, s.dim, pts);
+                       cvtcli::close_output(f);
+                       long failed = 0;
+                       for (const auto& p : pts) failed += !p.error.empty();
+                       if (failed > 0) std::fprintf(stderr, "cvtplant analyze sweep: %ld point(s) failed (see error column)\n", failed);
+                       return 0;
+                     }});
+  }
+  {  // merge
+    auto shards = std::make_shared<std::vector<std::string>>();
+    auto out = std::make_shared<std::string>("-");
+    auto* c = an->add_subcommand("merge", "merge sweep shards; refuses mixed sweeps and missing points");
+    c->add_option("shards", *shards, "shard CSV files")->required();
+    c->add_option("--out", *out, "merged CSV ('-' = stdout)");
+    tools.push_back({c, [shards, out] {
+                       std::FILE* f = cvtcli::open_output(*out);
+                       merge_sweep_csv(*shards, f);
+                       cvtcli::close_output(f);
+                       return 0;
+                     }});
+  }
+  {  // figures
+    auto a = std::make_shared<SeriesArgs>();
+    auto dir = std::make_shared<std::string>();
+    auto sweep = std::make_shared<std::string>();
+    auto scene = std::make_shared<std::string>();
+    auto t_end = std::make_shared<double>(20.0);
+    auto* c = an->add_subcommand("figures", "PNG figures via gnuplot: series (--csv), scene (--scene) or sweep (--sweep)");
+    c->add_option("--csv", a->csv, "input CSV");
+    c->add_option("--column", a->column, "column name");
+    c->add_option("--dt", a->dt, "sample interval [s]");
+    c->add_option("--discard", a->discard, "leading samples dropped");
+    c->add_option("--tau", a->tau, "delay [samples]");
+    c->add_option("--m", a->m, "embedding dimension");
+    c->add_option("--scene", *scene, "scene for time histories and phase portraits");
+    c->add_option("--t-end", *t_end, "scene simulation time [s]");
+    c->add_option("--sweep", *sweep, "merged sweep CSV for bifurcation and exponent maps");
+    c->add_option("--out-dir", *dir, "output directory")->required();
+    c->add_flag("--json", a->json, "print the written files as JSON");
+    tools.push_back({c, [a, dir, sweep, scene, t_end] {
+                       std::vector<std::string> files;
+                       if (a->csv.empty() && sweep->empty() && scene->empty())
+                         throw cvtcli::UsageError{"give --csv/--column, --scene or --sweep"};
+                       if (!a->csv.empty()) {
+                         if (a->column.empty()) throw cvtcli::UsageError{"--column is required with --csv"};
+                         CsvColumn col = read_csv_column(a->csv, a->column);
+                         if (a->discard < 0 || static_cast<std::size_t>(a->discard) >= col.values.size())
+                           throw cvtcli::UsageError{"--discard must be in 0..N-1"};
+                         std::vector<double> x(col.values.begin() + a->discard, col.values.end());
+                         auto f = series_figures(x, a->dt, a->column, *dir, a->tau, a->m);
+                         files.insert(files.end(), f.begin(), f.end());
+                       }
+                       if (!scene->empty()) {
+                         const Scene& s = find_scene(*scene);
+                         auto f = scene_figures(s, s.default_params, s.default_x0, s.defaults.dt, *t_end, *dir);
+                         files.insert(files.end(), f.begin(), f.end());
+                       }
+                       if (!sweep->empty()) {
+                         auto f = sweep_figures(*sweep, *dir);
+                         files.insert(files.end(), f.begin(), f.end());
+                       }
+                       if (a->json)
+                         cvtcli::print_json(json{{"files", files}});
+                       else
+                         for (const auto& f : files) std::printf("wrote %s\n", f.c_str());
+                       return 0;
+                     }});
+  }
+
+  return [tools]() -> int {
+    for (const auto& [c, f] : tools)
+      if (c->parsed()) return guarded(f);
+    throw cvtcli::UsageError{"choose a tool (see cvtplant analyze --help)"};
+  };
+}
+
+static const bool registered = cvtcli::add_registrar(&register_analyze);
+
+}  // namespace

@@ -1,0 +1,220 @@
+// `cvtplant run`: a scene of the reduced-order CVT plant, frame by frame,
+// in double, float or q16.16 (docs/cli.md#run, docs/rom.md).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "io_util.hpp"
+#include "registry.hpp"
+#include "rom_dispatch.hpp"
+#include "scene_file.hpp"
+#include "cvtplant/scene/scene_runner.hpp"
+
+namespace {
+
+struct Options {
+  std::string scene;
+  double t_end_s = -1, dt_s = -1;
+  int substeps = -1;
+  std::string integrator, scalar, csv;
+  int every = 1;
+  bool json = false;
+};
+
+struct Result {
+  cvt::RomFault fault = cvt::RomFault::none;
+  long frames = 0;
+  double t_end_s = 0;
+  double wall_s = 0;
+  double stored0 = 0, stored = 0, input = 0, actuator = 0, load = 0, friction = 0, damping = 0, residual = 0,
+         scale = 0;
+  double mean_w1 = 0, mean_w2 = 0, mean_fax = 0, max_abs_slip = 0;
+  double final_w1 = 0, final_w2 = 0, final_fax = 0, final_slip = 0, final_torque = 0;
+};
+
+const char* kStateNames[] = {"omega1", "omega2", "x1", "xd1", "x2", "xd2"};
+
+struct Runner {
+  const cvt::Scene& scene;
+  std::FILE* csv;
+  int every;
+
+  template <class T, std::uint32_t F>
+  Result call() {
+    using Sim = cvt::RomSimulator<T, F>;
+    using L = cvt::RomLayout<F>;
+    const std::uint32_t log = scene.log;
+    if (csv != nullptr) {
+      std::fprintf(csv, "t,omega1,omega2,F_ax,slip");
+      if (log & cvt::rom_log::torques) std::fprintf(csv, ",tau_in,tau_load,torque_transmitted");
+      if (log & cvt::rom_log::friction) std::fprintf(csv, ",F1,F2,v_rel1,v_rel2,stick1,stick2");
+      if (log & cvt::rom_log::ratios) std::fprintf(csv, ",speed_ratio,geometric_ratio");
+      if (log & cvt::rom_log::energy)
+        std::fprintf(csv, ",E_stored,W_in,W_actuator,W_load,W_friction,W_damping,E_residual");
+      if (log & cvt::rom_log::states) {
+        for (const char* n : kStateNames) std::fprintf(csv, ",%s", n);
+        if (L::kAxial) std::fprintf(csv, ",F_h,delta,delta_dot");
+        if (L::kPolygon) std::fprintf(csv, ",psi");
+      }
+      std::fprintf(csv, ",fault\n");
+    }
+    Result r;
+    double sum_w1 = 0, sum_w2 = 0, sum_fax = 0;
+    auto d = [](const T& v) { return cvt::to_double(v); };
+    auto on_frame = [&](long i, double t, const Sim& sim) {
+      const cvt::RomOutputs<T> o = sim.outputs();
+      const auto& e = sim.energy();
+      if (i > 0) {
+        sum_w1 += d(o.omega1_rad_s);
+        sum_w2 += d(o.omega2_rad_s);
+        sum_fax += d(o.clamp_force_N);
+        r.max_abs_slip = std::max(r.max_abs_slip, std::fabs(d(o.slip)));
+      }
+      r.frames = i;
+      r.t_end_s = t;
+      if (csv != nullptr && (i % every == 0 || sim.fault() != cvt::RomFault::none)) {
+        std::fprintf(csv, "%.9g,%.10g,%.10g,%.10g,%.10g", t, d(o.omega1_rad_s), d(o.omega2_rad_s), d(o.clamp_force_N),
+                     d(o.slip));
+        if (log & cvt::rom_log::torques)
+          std::fprintf(csv, ",%.10g,%.10g,%.10g", d(o.tau_in_Nm), d(o.tau_load_Nm), d(o.torque_transmitted_Nm));
+        if (log & cvt::rom_log::friction)
+          std::fprintf(csv, ",%.10g,%.10g,%.10g,%.10g,%d,%d", d(o.friction1_N), d(o.friction2_N), d(o.v_rel1_m_s),
+                       d(o.v_rel2_m_s), o.stick1 ? 1 : 0, o.stick2 ? 1 : 0);
+        if (log & cvt::rom_log::ratios) std::fprintf(csv, ",%.10g,%.10g", d(o.speed_ratio), d(o.geometric_ratio));
+        if (log & cvt::rom_log::energy)
+          std::fprintf(csv, ",%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.6g", double(e.stored_J), double(e.input_J),
+                       double(e.actuator_J), double(e.load_J), double(e.friction_loss_J), double(e.damping_loss_J),
+                       double(e.residual_J()));
+        if (log & cvt::rom_log::states)
+          for (int k = 0; k < Sim::Plant::kStates; ++k) std::fprintf(csv, ",%.12g", d(sim.state()(k)));
+        std::fprintf(csv, ",%s\n", cvt::rom_fault_name(sim.fault()));
+      }
+      if (sim.fault() != cvt::RomFault::none || i == cvt::scene_frames(scene)) {
+        r.stored0 = double(e.stored0_J);
+        r.stored = double(e.stored_J);
+        r.input = double(e.input_J);
+        r.actuator = double(e.actuator_J);
+        r.load = double(e.load_J);
+        r.friction = double(e.friction_loss_J);
+        r.damping = double(e.damping_loss_J);
+        r.residual = double(e.residual_J());
+        r.scale = double(e.scale_J());
+        r.final_w1 = d(o.omega1_rad_s);
+        r.final_w2 = d(o.omega2_rad_s);
+        r.final_fax = d(o.clamp_force_N);
+        r.final_slip = d(o.slip);
+        r.final_torque = d(o.torque_transmitted_Nm);
+      }
+      return true;
+    };
+    const auto t0 = std::chrono::steady_clock::now();
+    r.fault = cvt::run_scene<T, F>(scene, cvt::sim_config_of(scene), on_frame);
+    r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double n = static_cast<double>(std::max<long>(1, r.frames));
+    r.mean_w1 = sum_w1 / n;
+    r.mean_w2 = sum_w2 / n;
+    r.mean_fax = sum_fax / n;
+    return r;
+  }
+};
+
+cvtcli::Action register_run(CLI::App& app) {
+  auto opt = std::make_shared<Options>();
+  CLI::App* sub = app.add_subcommand("run", "Run a scene of the reduced-order CVT plant (docs/rom.md)");
+  sub->add_option("--scene", opt->scene, "Built-in scene name (see `cvtplant scenes`) or a TOML scene file")
+      ->required();
+  sub->add_option("--t-end", opt->t_end_s, "Simulated time [s] (default: the scene's)");
+  sub->add_option("--dt", opt->dt_s, "Frame step [s] (default: the scene's, 1e-3)");
+  sub->add_option("--substeps", opt->substeps, "Integrator steps per frame (default: the scene's)");
+  sub->add_option("--integrator", opt->integrator,
+                  "euler | semi-implicit-euler | heun | rk4 | linear-implicit-euler | ros2 (default: the scene's)");
+  sub->add_option("--scalar", opt->scalar, "double | float | fixed (q16.16) (default: the scene's)")
+      ->check(CLI::IsMember({"double", "float", "fixed"}));
+  sub->add_option("--csv", opt->csv, "Write the frames as CSV ('-' for stdout)");
+  sub->add_option("--every", opt->every, "Write every N-th frame to the CSV")->check(CLI::PositiveNumber);
+  sub->add_flag("--json", opt->json, "Print a JSON summary instead of the text one");
+
+  return [opt, sub]() -> int {
+    const Options& o = *opt;
+    auto loaded = cvtcli::resolve_scene(o.scene);
+    cvt::Scene s = loaded->scene;
+    if (sub->count("--t-end") > 0) {
+      if (!(o.t_end_s > 0) || !std::isfinite(o.t_end_s)) throw cvtcli::UsageError{"--t-end: must be > 0"};
+      s.t_end_s = o.t_end_s;
+    }
+    if (sub->count("--dt") > 0) {
+      if (!(o.dt_s > 0) || !std::isfinite(o.dt_s)) throw cvtcli::UsageError{"--dt: must be > 0"};
+      s.frame_s = o.dt_s;
+    }
+    if (sub->count("--substeps") > 0) s.substeps = o.substeps;
+    if (!o.integrator.empty() && !cvt::parse_method(o.integrator.c_str(), s.method))
+      throw cvtcli::UsageError{"--integrator: unknown method '" + o.integrator + "'"};
+    if (o.scalar == "double") s.scalar = cvt::ScalarKind::f64;
+    if (o.scalar == "float") s.scalar = cvt::ScalarKind::f32;
+    if (o.scalar == "fixed") s.scalar = cvt::ScalarKind::q16_16;
+    const cvt::SceneIssue issue = cvt::validate_scene(s);
+    if (!issue.ok) throw cvtcli::UsageError{std::string(issue.field) + ": " + issue.message};
+    if (s.t_end_s / s.frame_s > 1e9) throw cvtcli::UsageError{"--t-end/--dt: more than 1e9 frames"};
+    if (s.scalar == cvt::ScalarKind::q16_16 && s.frame_s / s.substeps < 4.0 / 65536.0)
+      throw cvtcli::UsageError{"--dt: q16.16 cannot represent substeps below 6.1e-5 s to 2 %"};
+
+    std::FILE* csv = o.csv.empty() ? nullptr : cvtcli::open_output(o.csv);
+    Runner runner{s, csv, o.every};
+    const Result r = cvtcli::with_plant(s.scalar, s.features, runner);
+    cvtcli::close_output(csv);
+
+    const double frames = static_cast<double>(std::max<long>(1, r.frames));
+    const double ns_frame = 1e9 * r.wall_s / frames;
+    const double rel = r.scale > 0 ? r.residual / r.scale : 0.0;
+    if (o.json) {
+      nlohmann::json j;
+      j["subcommand"] = "run";
+      j["scene"] = loaded->name;
+      j["source"] = loaded->source;
+      j["features"] = cvtcli::feature_names(s.features);
+      j["scalar"] = cvt::scalar_kind_name(s.scalar);
+      j["integrator"] = cvt::method_name(s.method);
+      j["dt_s"] = s.frame_s;
+      j["substeps"] = s.substeps;
+      j["frames"] = r.frames;
+      j["t_end_s"] = r.t_end_s;
+      j["fault"] = cvt::rom_fault_name(r.fault);
+      j["energy"] = {{"stored_initial_J", r.stored0},  {"stored_final_J", r.stored}, {"input_J", r.input},
+                     {"actuator_J", r.actuator},       {"load_J", r.load},           {"friction_loss_J", r.friction},
+                     {"damping_loss_J", r.damping},    {"residual_J", r.residual},   {"flow_scale_J", r.scale},
+                     {"residual_relative", rel}};
+      j["mean"] = {{"omega1_rad_s", r.mean_w1}, {"omega2_rad_s", r.mean_w2}, {"F_ax_N", r.mean_fax}};
+      j["max_abs_slip"] = r.max_abs_slip;
+      j["final"] = {{"omega1_rad_s", r.final_w1},
+                    {"omega2_rad_s", r.final_w2},
+                    {"F_ax_N", r.final_fax},
+                    {"slip", r.final_slip},
+                    {"torque_transmitted_Nm", r.final_torque}};
+      j["run_time_s"] = r.wall_s;
+      j["ns_per_frame"] = ns_frame;
+      j["ns_per_step"] = ns_frame / s.substeps;
+      cvtcli::print_json(j);
+    } else {
+      std::printf("Scene %s (%s): features %s, %s, %s, dt = %g s x %d substeps\n", loaded->name.c_str(),
+                  loaded->source.c_str(), cvtcli::feature_names(s.features).c_str(), cvt::scalar_kind_name(s.scalar),
+                  cvt::method_name(s.method), s.frame_s, s.substeps);
+      std::printf("  %ld frames to t = %g s, fault: %s\n", r.frames, r.t_end_s, cvt::rom_fault_name(r.fault));
+      std::printf("  final: omega1 = %.4f rad/s, omega2 = %.4f rad/s, F_ax = %.1f N, slip = %.5f\n", r.final_w1,
+                  r.final_w2, r.final_fax, r.final_slip);
+      std::printf("  energy: in %.4g J, actuator %.4g J, load %.4g J, friction %.4g J, damping %.4g J, "
+                  "stored %.4g -> %.4g J, residual %.3g J (%.2e of the flows)\n",
+                  r.input, r.actuator, r.load, r.friction, r.damping, r.stored0, r.stored, r.residual, rel);
+      std::printf("  %.0f ns/frame (%.3f s wall)\n", ns_frame, r.wall_s);
+    }
+    return r.fault == cvt::RomFault::none ? 0 : 1;
+  };
+}
+
+const bool registered = cvtcli::add_registrar(&register_run);
+
+}  // namespace

@@ -1,0 +1,40 @@
+#pragma once
+// Maps a scene's run-time scalar kind and feature mask onto the compile-time
+// plant type (docs/rom.md#features). Every combination of the four feature
+// bits is instantiated, so any scene file runs; firmware instantiates only
+// the plant it ships.
+#include <cstdint>
+#include <utility>
+
+#include "cvtplant/scalar/fixed_eigen.hpp"
+#include "cvtplant/scalar/scalar.hpp"
+#include "cvtplant/scene/scene.hpp"
+
+namespace cvtcli {
+
+// fn.template call<T, F>() for the scalar/features of the scene.
+template <class T, class Fn>
+decltype(auto) with_features(std::uint32_t features, Fn&& fn) {
+  switch (features & cvt::rom_feature::all) {
+#define CVT_ROM_CASE(N) \
+  case N: return fn.template call<T, N>();
+    CVT_ROM_CASE(0) CVT_ROM_CASE(1) CVT_ROM_CASE(2) CVT_ROM_CASE(3)
+    CVT_ROM_CASE(4) CVT_ROM_CASE(5) CVT_ROM_CASE(6) CVT_ROM_CASE(7)
+    CVT_ROM_CASE(8) CVT_ROM_CASE(9) CVT_ROM_CASE(10) CVT_ROM_CASE(11)
+    CVT_ROM_CASE(12) CVT_ROM_CASE(13) CVT_ROM_CASE(14)
+#undef CVT_ROM_CASE
+    default: return fn.template call<T, 15>();
+  }
+}
+
+template <class Fn>
+decltype(auto) with_plant(cvt::ScalarKind scalar, std::uint32_t features, Fn&& fn) {
+  switch (scalar) {
+    case cvt::ScalarKind::f32: return with_features<float>(features, std::forward<Fn>(fn));
+    case cvt::ScalarKind::q16_16: return with_features<cvt::q16_16>(features, std::forward<Fn>(fn));
+    case cvt::ScalarKind::f64:
+    default: return with_features<double>(features, std::forward<Fn>(fn));
+  }
+}
+
+}  // namespace cvtcli

@@ -1,0 +1,342 @@
+#include "scene_file.hpp"
+
+#include <toml++/toml.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <vector>
+
+#include "commands.hpp"
+#include "cvtplant/scene/builtin_scenes.hpp"
+
+namespace cvtcli {
+
+namespace {
+
+constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+
+struct FeatureName {
+  const char* name;
+  std::uint32_t bit;
+};
+constexpr FeatureName kFeatureNames[] = {{"axial", cvt::rom_feature::axial},
+                                         {"road_load", cvt::rom_feature::road_load},
+                                         {"deformation", cvt::rom_feature::deformation},
+                                         {"polygon", cvt::rom_feature::polygon}};
+constexpr FeatureName kLogNames[] = {{"torques", cvt::rom_log::torques},
+                                     {"friction", cvt::rom_log::friction},
+                                     {"ratios", cvt::rom_log::ratios},
+                                     {"energy", cvt::rom_log::energy},
+                                     {"states", cvt::rom_log::states}};
+
+// Reads one TOML document into a Scene, remembering where every key was.
+class Reader {
+ public:
+  Reader(std::string path, const toml::table& root) : path_(std::move(path)), root_(root) {}
+
+  [[noreturn]] void fail(const toml::source_region& where, const std::string& field, const std::string& why) const {
+    throw UsageError{path_ + ":" + std::to_string(where.begin.line) + ": " + field + ": " + why};
+  }
+  [[noreturn]] void fail_field(const std::string& field, const std::string& why) const {
+    const auto it = lines_.find(field);
+    const long line = it == lines_.end() ? 1 : it->second;
+    throw UsageError{path_ + ":" + std::to_string(line) + ": " + field + ": " + why};
+  }
+
+  // Rejects keys this reader does not know (a typo must not be ignored).
+  void check_known(const toml::table& t, const std::string& prefix, const std::set<std::string>& known) const {
+    for (const auto& [k, node] : t) {
+      const std::string key(k.str());
+      if (known.count(key) == 0) fail(node.source(), prefix + key, "unknown field");
+    }
+  }
+
+  double number(const toml::table& t, const std::string& prefix, const char* key, double fallback) {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) return fallback;
+    lines_[key] = n->source().begin.line;
+    lines_[prefix + key] = n->source().begin.line;
+    if (const auto v = n->value<double>(); v && (n->is_floating_point() || n->is_integer())) {
+      if (!std::isfinite(*v)) fail(n->source(), prefix + key, "must be finite");
+      return *v;
+    }
+    fail(n->source(), prefix + key, "expected a number");
+  }
+  bool boolean(const toml::table& t, const std::string& prefix, const char* key, bool fallback) {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) return fallback;
+    lines_[prefix + key] = n->source().begin.line;
+    if (!n->is_boolean()) fail(n->source(), prefix + key, "expected true or false");
+    return *n->value<bool>();
+  }
+  std::string text(const toml::table& t, const std::string& prefix, const char* key, const std::string& fallback) {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) return fallback;
+    lines_[prefix + key] = n->source().begin.line;
+    if (!n->is_string()) fail(n->source(), prefix + key, "expected a string");
+    return *n->value<std::string>();
+  }
+  const toml::table* table(const toml::table& t, const std::string& prefix, const char* key) {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) return nullptr;
+    lines_[prefix + key] = n->source().begin.line;
+    if (!n->is_table()) fail(n->source(), prefix + key, "expected a table [" + prefix + key + "]");
+    return n->as_table();
+  }
+  std::uint32_t name_list(const toml::table& t, const char* key, const FeatureName* names, int count,
+                          std::uint32_t fallback) {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) return fallback;
+    lines_[key] = n->source().begin.line;
+    if (!n->is_array()) fail(n->source(), key, "expected an array of names");
+    std::uint32_t bits = 0;
+    for (const toml::node& e : *n->as_array()) {
+      if (!e.is_string()) fail(e.source(), key, "expected an array of names");
+      const std::string s = *e.value<std::string>();
+      bool found = false;
+      for (int i = 0; i < count; ++i)
+        if (s == names[i].name) {
+          bits |= names[i].bit;
+          found = true;
+        }
+      if (!found) {
+        std::string all;
+        for (int i = 0; i < count; ++i) all += std::string(i ? ", " : "") + names[i].name;
+        fail(e.source(), key, "unknown name '" + s + "' (known: " + all + ")");
+      }
+    }
+    return bits;
+  }
+
+  cvt::Profile profile(const toml::table& inputs, const char* key, const cvt::Profile& fallback) {
+    const std::string prefix = std::string("inputs.") + key + ".";
+    const toml::node* n = inputs.get(key);
+    if (n == nullptr) return fallback;
+    lines_[key] = n->source().begin.line;
+    lines_[std::string("inputs.") + key] = n->source().begin.line;
+    if (n->is_integer() || n->is_floating_point()) return cvt::constant_profile(number(inputs, "inputs.", key, 0));
+    if (!n->is_table()) fail(n->source(), std::string("inputs.") + key, "expected a number or a table");
+    const toml::table& t = *n->as_table();
+    const std::string kind = text(t, prefix, "kind", "constant");
+    cvt::Profile p;
+    if (kind == "constant") {
+      check_known(t, prefix, {"kind", "value"});
+      p = cvt::constant_profile(number(t, prefix, "value", 0));
+    } else if (kind == "step") {
+      check_known(t, prefix, {"kind", "before", "after", "t_s"});
+      p = cvt::step_profile(number(t, prefix, "before", 0), number(t, prefix, "after", 0), number(t, prefix, "t_s", 0));
+    } else if (kind == "ramp") {
+      check_known(t, prefix, {"kind", "from", "to", "t0_s", "t1_s"});
+      p = cvt::ramp_profile(number(t, prefix, "from", 0), number(t, prefix, "to", 0), number(t, prefix, "t0_s", 0),
+                            number(t, prefix, "t1_s", 0));
+    } else if (kind == "sine") {
+      check_known(t, prefix, {"kind", "offset", "amplitude", "freq_hz", "t0_s"});
+      p = cvt::sine_profile(number(t, prefix, "offset", 0), number(t, prefix, "amplitude", 0),
+                            number(t, prefix, "freq_hz", 0), number(t, prefix, "t0_s", 0));
+    } else if (kind == "table") {
+      check_known(t, prefix, {"kind", "t_s", "value"});
+      p.kind = cvt::ProfileKind::table;
+      const toml::array* ts = t.get_as<toml::array>("t_s");
+      const toml::array* vs = t.get_as<toml::array>("value");
+      if (ts == nullptr || vs == nullptr) fail(t.source(), prefix + "t_s", "a table needs arrays t_s and value");
+      lines_[prefix + "t_s"] = ts->source().begin.line;
+      if (ts->size() != vs->size()) fail(vs->source(), prefix + "value", "t_s and value must have the same length");
+      if (ts->size() < 1 || ts->size() > static_cast<std::size_t>(cvt::kMaxProfilePoints))
+        fail(ts->source(), prefix + "t_s", "a table needs 1..16 points");
+      p.n = static_cast<int>(ts->size());
+      for (int i = 0; i < p.n; ++i) {
+        const auto a = (*ts)[static_cast<std::size_t>(i)].value<double>();
+        const auto b = (*vs)[static_cast<std::size_t>(i)].value<double>();
+        if (!a || !b) fail(ts->source(), prefix + "t_s", "table entries must be numbers");
+        p.t_s[i] = *a;
+        p.v[i] = *b;
+      }
+    } else {
+      fail(t.source(), prefix + "kind", "unknown profile kind '" + kind + "' (constant, step, ramp, sine, table)");
+    }
+    lines_[std::string(key)] = t.source().begin.line;
+    return p;
+  }
+
+  void friction(const toml::table& t, cvt::FrictionParams<double>& f) {
+    const std::string pre = "friction.";
+    check_known(t, pre, {"preset", "law", "mu0", "a", "b_m_s", "sigma", "kappa_s_m", "chi_s_m", "sign", "lambda_s_m"});
+    const std::string preset = text(t, pre, "preset", "");
+    if (preset == "oscillator_coulomb") f = cvt::friction_presets::oscillator_coulomb<double>();
+    else if (preset == "oscillator_stribeck") f = cvt::friction_presets::oscillator_stribeck<double>();
+    else if (preset == "table2_case1") f = cvt::friction_presets::table2_case1<double>();
+    else if (preset == "table2_case2") f = cvt::friction_presets::table2_case2<double>();
+    else if (!preset.empty())
+      fail(t.get("preset")->source(), pre + "preset",
+           "unknown preset '" + preset + "' (oscillator_coulomb, oscillator_stribeck, table2_case1, table2_case2)");
+    const std::string law = text(t, pre, "law", "");
+    if (law == "constant") f.law = cvt::FrictionLaw::constant;
+    else if (law == "case1") f.law = cvt::FrictionLaw::case1;
+    else if (law == "case2") f.law = cvt::FrictionLaw::case2;
+    else if (!law.empty()) fail(t.get("law")->source(), pre + "law", "unknown law '" + law + "' (constant, case1, case2)");
+    const std::string sign = text(t, pre, "sign", "");
+    if (sign == "atan") f.sign = cvt::SignFunction::atan;
+    else if (sign == "tanh") f.sign = cvt::SignFunction::tanh;
+    else if (sign == "exact") f.sign = cvt::SignFunction::exact;
+    else if (!sign.empty()) fail(t.get("sign")->source(), pre + "sign", "unknown sign '" + sign + "' (atan, tanh, exact)");
+    f.mu0 = number(t, pre, "mu0", f.mu0);
+    f.a = number(t, pre, "a", f.a);
+    f.b_m_s = number(t, pre, "b_m_s", f.b_m_s);
+    f.sigma = number(t, pre, "sigma", f.sigma);
+    f.kappa_s_m = number(t, pre, "kappa_s_m", f.kappa_s_m);
+    f.chi_s_m = number(t, pre, "chi_s_m", f.chi_s_m);
+    f.lambda_s_m = number(t, pre, "lambda_s_m", f.lambda_s_m);
+  }
+
+  void read(LoadedScene& out) {
+    cvt::Scene& s = out.scene;
+    check_known(root_, "", {"name", "summary", "base", "features", "t_end_s", "frame_s", "substeps", "integrator",
+                            "scalar", "log", "params", "friction", "initial", "inputs"});
+    const std::string base = text(root_, "", "base", "");
+    if (!base.empty()) {
+      const cvt::Scene* b = cvt::find_builtin_scene(base.c_str());
+      if (b == nullptr) fail(root_.get("base")->source(), "base", "no built-in scene '" + base + "' (see cvtplant scenes)");
+      s = *b;
+    }
+    out.name = text(root_, "", "name", base.empty() ? std::string("unnamed") : base);
+    out.summary = text(root_, "", "summary", "");
+    s.features = name_list(root_, "features", kFeatureNames, 4, s.features);
+    s.log = name_list(root_, "log", kLogNames, 5, s.log);
+    s.t_end_s = number(root_, "", "t_end_s", s.t_end_s);
+    s.frame_s = number(root_, "", "frame_s", s.frame_s);
+    const double sub = number(root_, "", "substeps", s.substeps);
+    if (sub != std::floor(sub) || sub < 1 || sub > 10000) fail_field("substeps", "must be an integer in 1..10000");
+    s.substeps = static_cast<int>(sub);
+    const std::string integ = text(root_, "", "integrator", cvt::method_name(s.method));
+    if (!cvt::parse_method(integ.c_str(), s.method))
+      fail_field("integrator", "unknown method '" + integ +
+                                   "' (euler, semi-implicit-euler, heun, rk4, linear-implicit-euler, ros2)");
+    const std::string scalar = text(root_, "", "scalar", cvt::scalar_kind_name(s.scalar));
+    if (scalar == "double") s.scalar = cvt::ScalarKind::f64;
+    else if (scalar == "float") s.scalar = cvt::ScalarKind::f32;
+    else if (scalar == "fixed") s.scalar = cvt::ScalarKind::q16_16;
+    else fail_field("scalar", "unknown scalar '" + scalar + "' (double, float, fixed)");
+
+    cvt::RomParams& p = s.params;
+    if (const toml::table* t = table(root_, "", "params")) {
+      const std::string pre = "params.";
+      check_known(*t, pre,
+                  {"r1_m", "r2_m", "beta0_deg", "center_distance_m", "J1_kgm2", "J2_kgm2", "lump_mass_kg", "k1_N_m",
+                   "c1_Ns_m", "k2_N_m", "c2_Ns_m", "hold_driver_speed", "hold_driven_speed", "stick_speed_m_s",
+                   "actuator_tau_s", "clamp_max_N", "sheave_mass_kg", "sheave_damping_Ns_m", "K_ax_N_m", "road_T0_Nm",
+                   "road_cv_Nms_rad", "road_ca_Nms2_rad2", "road_w_eps_rad_s", "zeta1_rad", "zeta2_rad", "pitch_m"});
+      p.r1_m = number(*t, pre, "r1_m", p.r1_m);
+      p.r2_m = number(*t, pre, "r2_m", p.r2_m);
+      p.beta0_rad = number(*t, pre, "beta0_deg", p.beta0_rad / kDegToRad) * kDegToRad;
+      p.center_distance_m = number(*t, pre, "center_distance_m", p.center_distance_m);
+      p.J1_kgm2 = number(*t, pre, "J1_kgm2", p.J1_kgm2);
+      p.J2_kgm2 = number(*t, pre, "J2_kgm2", p.J2_kgm2);
+      p.lump_mass_kg = number(*t, pre, "lump_mass_kg", p.lump_mass_kg);
+      p.k1_N_m = number(*t, pre, "k1_N_m", p.k1_N_m);
+      p.c1_Ns_m = number(*t, pre, "c1_Ns_m", p.c1_Ns_m);
+      p.k2_N_m = number(*t, pre, "k2_N_m", p.k2_N_m);
+      p.c2_Ns_m = number(*t, pre, "c2_Ns_m", p.c2_Ns_m);
+      p.hold_driver_speed = boolean(*t, pre, "hold_driver_speed", p.hold_driver_speed);
+      p.hold_driven_speed = boolean(*t, pre, "hold_driven_speed", p.hold_driven_speed);
+      p.stick_speed_m_s = number(*t, pre, "stick_speed_m_s", p.stick_speed_m_s);
+      p.actuator_tau_s = number(*t, pre, "actuator_tau_s", p.actuator_tau_s);
+      p.clamp_max_N = number(*t, pre, "clamp_max_N", p.clamp_max_N);
+      p.sheave_mass_kg = number(*t, pre, "sheave_mass_kg", p.sheave_mass_kg);
+      p.sheave_damping_Ns_m = number(*t, pre, "sheave_damping_Ns_m", p.sheave_damping_Ns_m);
+      p.K_ax_N_m = number(*t, pre, "K_ax_N_m", p.K_ax_N_m);
+      p.road_T0_Nm = number(*t, pre, "road_T0_Nm", p.road_T0_Nm);
+      p.road_cv_Nms_rad = number(*t, pre, "road_cv_Nms_rad", p.road_cv_Nms_rad);
+      p.road_ca_Nms2_rad2 = number(*t, pre, "road_ca_Nms2_rad2", p.road_ca_Nms2_rad2);
+      p.road_w_eps_rad_s = number(*t, pre, "road_w_eps_rad_s", p.road_w_eps_rad_s);
+      p.zeta1_rad = number(*t, pre, "zeta1_rad", p.zeta1_rad);
+      p.zeta2_rad = number(*t, pre, "zeta2_rad", p.zeta2_rad);
+      p.pitch_m = number(*t, pre, "pitch_m", p.pitch_m);
+    }
+    if (const toml::table* t = table(root_, "", "friction")) friction(*t, p.friction);
+    if (const toml::table* t = table(root_, "", "initial")) {
+      const std::string pre = "initial.";
+      check_known(*t, pre, {"omega1_rad_s", "omega2_rad_s", "x1_m", "xd1_m_s", "x2_m", "xd2_m_s", "phase_rad"});
+      cvt::RomInitial& x = s.initial;
+      x.omega1_rad_s = number(*t, pre, "omega1_rad_s", x.omega1_rad_s);
+      x.omega2_rad_s = number(*t, pre, "omega2_rad_s", x.omega2_rad_s);
+      x.x1_m = number(*t, pre, "x1_m", x.x1_m);
+      x.xd1_m_s = number(*t, pre, "xd1_m_s", x.xd1_m_s);
+      x.x2_m = number(*t, pre, "x2_m", x.x2_m);
+      x.xd2_m_s = number(*t, pre, "xd2_m_s", x.xd2_m_s);
+      x.phase_rad = number(*t, pre, "phase_rad", x.phase_rad);
+    }
+    if (const toml::table* t = table(root_, "", "inputs")) {
+      check_known(*t, "inputs.", {"tau_in", "tau_load", "clamp"});
+      s.tau_in = profile(*t, "tau_in", s.tau_in);
+      s.tau_load = profile(*t, "tau_load", s.tau_load);
+      s.clamp = profile(*t, "clamp", s.clamp);
+    }
+    const cvt::SceneIssue issue = cvt::validate_scene(s);
+    if (!issue.ok) fail_field(field_key(issue.field), issue.message);
+  }
+
+ private:
+  // validate_scene reports bare keys; map them to the dotted file keys.
+  std::string field_key(const std::string& f) const {
+    for (const char* pre : {"params.", "friction.", "initial.", "inputs.", ""}) {
+      if (lines_.count(pre + f)) return pre + f;
+    }
+    return f;
+  }
+
+  std::string path_;
+  const toml::table& root_;
+  std::map<std::string, long> lines_;
+};
+
+}  // namespace
+
+std::shared_ptr<LoadedScene> load_scene_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw UsageError{path + ": cannot read the scene file"};
+  std::stringstream buf;
+  buf << in.rdbuf();
+  // Tools build with exceptions on, so toml++ reports syntax errors by throwing.
+  toml::table root;
+  try {
+    root = toml::parse(buf.str(), path);
+  } catch (const toml::parse_error& e) {
+    throw UsageError{path + ":" + std::to_string(e.source().begin.line) + ": syntax: " + std::string(e.description())};
+  }
+  auto out = std::make_shared<LoadedScene>();
+  Reader r(path, root);
+  r.read(*out);
+  out->source = path;
+  out->scene.name = out->name.c_str();
+  out->scene.summary = out->summary.c_str();
+  return out;
+}
+
+std::shared_ptr<LoadedScene> resolve_scene(const std::string& name_or_path) {
+  if (const cvt::Scene* b = cvt::find_builtin_scene(name_or_path.c_str())) {
+    auto out = std::make_shared<LoadedScene>();
+    out->scene = *b;
+    out->name = b->name;
+    out->summary = b->summary;
+    out->source = "built-in";
+    out->scene.name = out->name.c_str();
+    out->scene.summary = out->summary.c_str();
+    return out;
+  }
+  std::ifstream probe(name_or_path);
+  if (!probe)
+    throw UsageError{"--scene: '" + name_or_path + "' is neither a built-in scene (see `cvtplant scenes`) nor a readable file"};
+  return load_scene_file(name_or_path);
+}
+
+std::string feature_names(std::uint32_t features) {
+  std::string s;
+  for (const FeatureName& f : kFeatureNames)
+    if (features & f.bit) s += (s.empty() ? "" : ",") + std::string(f.name);
+  return s.empty() ? "none" : s;
+}
+
+}  // namespace cvtcli

@@ -1,0 +1,27 @@
+#pragma once
+// Scene files (TOML) for the offline tool (docs/rom.md#scene-files). Errors
+// name the file, the line and the field; every value is checked by
+// cvt::validate_scene before a run.
+#include <memory>
+#include <string>
+
+#include "cvtplant/scene/scene.hpp"
+
+namespace cvtcli {
+
+// A scene plus the storage its name/summary point into.
+struct LoadedScene {
+  cvt::Scene scene;
+  std::string name, summary, source;  // source: "built-in" or the file path
+};
+
+// Reads and validates a scene file; throws UsageError("FILE:LINE: FIELD: why").
+std::shared_ptr<LoadedScene> load_scene_file(const std::string& path);
+
+// A built-in scene name or a path to a scene file.
+std::shared_ptr<LoadedScene> resolve_scene(const std::string& name_or_path);
+
+// "axial,road_load" for a feature mask ("none" if 0).
+std::string feature_names(std::uint32_t features);
+
+}  // namespace cvtcli
