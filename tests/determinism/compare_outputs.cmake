@@ -1,12 +1,13 @@
 # Runs program A twice and program B once; all three outputs must be
-# byte-identical and contain HASH lines. Usage: cmake -DA=.. -DB=.. -P this
+# byte-identical and contain HASH lines.
+# Usage: cmake -DA=.. -DB=.. [-DEMULATOR="qemu-aarch64;-L;/usr/..."] -P this
 foreach(run a1 a2 b)
   if(run STREQUAL "b")
     set(prog ${B})
   else()
     set(prog ${A})
   endif()
-  execute_process(COMMAND ${prog} OUTPUT_VARIABLE out_${run} RESULT_VARIABLE rc)
+  execute_process(COMMAND ${EMULATOR} ${prog} OUTPUT_VARIABLE out_${run} RESULT_VARIABLE rc)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "${prog} exited with ${rc}")
   endif()

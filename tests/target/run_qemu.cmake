@@ -1,7 +1,9 @@
 # Runs one Cortex-M image under qemu-system-arm and checks its exit status and
 # console output. Used by the ctest entries in tests/target/CMakeLists.txt.
 #   cmake -DQEMU=... -DMACHINE=mps2-an386 -DIMAGE=x.elf -DEXPECT_STATUS=0
-#         [-DEXPECT_REGEX=...] [-DTIMEOUT=60] -P run_qemu.cmake
+#         [-DEXPECT_REGEX=...] [-DTIMEOUT=60] [-DLOG_FILE=out.log] -P run_qemu.cmake
+# LOG_FILE keeps the console output for later steps (the cross-target
+# determinism check reads the HASH lines from it).
 # docs/build.md#qemu
 foreach(v QEMU MACHINE IMAGE EXPECT_STATUS)
   if(NOT DEFINED ${v})
@@ -23,6 +25,9 @@ execute_process(
   OUTPUT_VARIABLE out
   ERROR_VARIABLE out)
 message("${out}")
+if(DEFINED LOG_FILE)
+  file(WRITE "${LOG_FILE}" "${out}")
+endif()
 if(NOT status STREQUAL "${EXPECT_STATUS}")
   message(FATAL_ERROR "qemu exit status '${status}', expected ${EXPECT_STATUS}")
 endif()
