@@ -34,13 +34,52 @@ awk 'BEGIN{print "t,s"; for(i=0;i<2000;i++) { if(i==10) print "10,nan"; else pri
 awk 'BEGIN{print "t,s"; for(i=0;i<2000;i++) print i ",1.5"}' > "$TMP/const.csv"
 awk 'BEGIN{print "t,s"; for(i=0;i<20;i++) printf "%d,%.10f\n", i, sin(i*0.17)}' > "$TMP/short.csv"
 
-for tool in ami fnn cao lle rqa test01 classify; do
-  expect 2 "no column 'missing'.*columns: t, s" -- "$BIN" analyze $tool --csv "$TMP/sine.csv" --column missing
-  expect 2 "bad_cell.csv:5: column 's': 'abc' is not a number" -- "$BIN" analyze $tool --csv "$TMP/bad_cell.csv" --column s
-  expect 2 "nan.csv:12: column 's': NaN" -- "$BIN" analyze $tool --csv "$TMP/nan.csv" --column s
-  expect 2 "constant" -- "$BIN" analyze $tool --csv "$TMP/const.csv" --column s
-  expect 2 "too few points" -- "$BIN" analyze $tool --csv "$TMP/short.csv" --column s
+for tool in ami fnn cao lle rqa test01 classify recurrence figures; do
+  extra=()
+  [ "$tool" = recurrence ] && extra=(--png "$TMP/bad.png")
+  [ "$tool" = figures ] && extra=(--out-dir "$TMP/bad_fig")
+  expect 2 "no column 'missing'.*columns: t, s" -- "$BIN" analyze $tool --csv "$TMP/sine.csv" --column missing "${extra[@]}"
+  expect 2 "bad_cell.csv:5: column 's': 'abc' is not a number" -- "$BIN" analyze $tool --csv "$TMP/bad_cell.csv" --column s "${extra[@]}"
+  expect 2 "nan.csv:12: column 's': NaN" -- "$BIN" analyze $tool --csv "$TMP/nan.csv" --column s "${extra[@]}"
+  expect 2 "constant" -- "$BIN" analyze $tool --csv "$TMP/const.csv" --column s "${extra[@]}"
+  expect 2 "too few points" -- "$BIN" analyze $tool --csv "$TMP/short.csv" --column s "${extra[@]}"
 done
+expect 2 "column is required" -- "$BIN" analyze figures --csv "$TMP/sine.csv" --out-dir "$TMP/bad_fig"
+expect 2 "give --csv" -- "$BIN" analyze figures --out-dir "$TMP/bad_fig"
+
+# seed-section4 and the ROM lyapunov scenes (docs/analysis.md#seed-section4, #rom-lyapunov).
+expect 2 "unknown ROM scene 'nope'" -- "$BIN" analyze seed-section4 --scene nope --out-dir "$TMP/s4"
+expect 2 "unknown signal 'torque'" -- "$BIN" analyze seed-section4 --scene seed-case1 --signals torque --out-dir "$TMP/s4"
+expect 2 "leaves no data" -- "$BIN" analyze seed-section4 --scene seed-case1 --t-end 1 --t-transient 5 --out-dir "$TMP/s4"
+expect 2 "tau must be >= 1" -- "$BIN" analyze seed-section4 --scene seed-case1 --tau 0 --out-dir "$TMP/s4"
+expect 2 "t-end must be > 0" -- "$BIN" analyze seed-section4 --scene seed-case1 --t-end -3 --out-dir "$TMP/s4"
+expect 2 "expected 9 comma-separated values" -- "$BIN" lyapunov --scene seed-case1 --x0 1,2 --t-end 1
+expect 2 "no parameter 'clamp'" -- "$BIN" lyapunov --scene seed-case2 --param clamp=3000 --t-end 1
+expect 2 "clamp" -- "$BIN" lyapunov --scene seed-case1 --param clamp_N=-1 --t-end 1
+
+# --help on every subcommand: exit 0, a usage text that lists the options.
+for sub in "lyapunov" "analyze" "analyze ami" "analyze fnn" "analyze cao" "analyze lle" "analyze rqa" \
+           "analyze recurrence" "analyze test01" "analyze classify" "analyze trajectory" "analyze sweep" \
+           "analyze merge" "analyze figures" "analyze seed-section4"; do
+  # shellcheck disable=SC2086
+  out=$("$BIN" $sub --help 2>&1)
+  rc=$?
+  if [ "$rc" = 0 ] && grep -q "Usage" <<<"$out" && grep -q -- "--help" <<<"$out"; then
+    echo "ok: $sub --help"
+  else
+    echo "FAIL: $sub --help (exit $rc)"; fail=1
+  fi
+done
+
+# figures from a series: the documented PNGs, each a PNG.
+if "$BIN" analyze figures --csv "$TMP/sine.csv" --column s --out-dir "$TMP/fig" >/dev/null; then
+  for f in time_history delay_reconstruction ami fnn divergence recurrence; do
+    head -c 8 "$TMP/fig/$f.png" 2>/dev/null | od -An -c | grep -q "P   N   G" && echo "ok: figures $f.png" ||
+      { echo "FAIL: figures $f.png"; fail=1; }
+  done
+else
+  echo "FAIL: analyze figures on a sine"; fail=1
+fi
 expect 2 "cannot read" -- "$BIN" analyze fnn --csv "$TMP/does_not_exist.csv" --column s
 expect 2 "too few points" -- "$BIN" analyze lle --csv "$TMP/sine.csv" --column s --m 10 --tau 210
 expect 2 "" -- "$BIN" analyze lle --csv "$TMP/sine.csv" --column s --method foo

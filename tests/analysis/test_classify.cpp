@@ -39,3 +39,23 @@ TEST_CASE("classify: a damped oscillation -> fixed_point") {
   for (std::size_t i = 0; i < d.size(); ++i) d[i] = std::exp(-0.003 * i) * std::sin(0.3 * i);
   CHECK(classify(d, {}).classification == "fixed_point");
 }
+
+TEST_CASE("classify: a slowly damped oscillation (60-fold over the series) -> fixed_point") {
+  // Decay rate chosen so that the first/last quarter std ratio is ~60, below
+  // the 100x rule: the geometric rule (>= 1.5x per quarter) must catch it.
+  std::vector<double> d(8000);
+  for (std::size_t i = 0; i < d.size(); ++i) d[i] = std::exp(-0.0007 * i) * std::sin(2 * M_PI * i / 950.0);
+  const Classification c = classify(d, {});
+  CHECK(c.amplitude_decay < 100);
+  CHECK(c.amplitude_decay > 10);
+  CHECK(c.classification == "fixed_point");
+}
+
+TEST_CASE("classify: a transient that levels off onto a cycle is not a fixed point") {
+  // (1 + 4 e^{-t/T}) sin: the amplitude falls 5x early, then stays: the last
+  // quarters differ by < 1.5x, so neither decay rule may fire.
+  std::vector<double> d(8000);
+  for (std::size_t i = 0; i < d.size(); ++i) d[i] = (1 + 4 * std::exp(-0.003 * i)) * std::sin(2 * M_PI * i / 97.0);
+  const Classification c = classify(d, {});
+  CHECK(c.classification != "fixed_point");
+}

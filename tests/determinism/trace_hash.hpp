@@ -13,6 +13,8 @@
 #include "cvtplant/plant/oscillator.hpp"
 #include "cvtplant/scalar/fixed_eigen.hpp"
 #include "cvtplant/scalar/scalar.hpp"
+#include "cvtplant/scene/builtin_scenes.hpp"
+#include "cvtplant/scene/scene_runner.hpp"
 
 namespace cvt::testing {
 
@@ -60,6 +62,34 @@ std::uint64_t oscillator_trace_hash(Method m, double h_s, long steps) {
     for (int k = 0; k < 4; ++k) hash.add(x(k));
   }
   return hash.value();
+}
+
+// The reduced-order plant (docs/rom.md): a built-in scene at its real-time
+// default (ROS2, 2 substeps per 1 ms frame, energy watchdog on) for
+// `seconds`; every state after every frame, then the fault code. Fixed point
+// hashes its internal units (RomUnits), which are part of what must agree.
+template <class T, std::uint32_t F>
+std::uint64_t rom_trace_hash(const char* scene_name, double seconds) {
+  Scene s = *find_builtin_scene(scene_name);
+  s.t_end_s = seconds;
+  TraceHash hash;
+  const RomFault fault = run_scene<T, F>(s, sim_config_of(s), [&](long, double, const RomSimulator<T, F>& sim) {
+    for (int k = 0; k < RomSimulator<T, F>::Plant::kStates; ++k) hash.add(sim.state()(k));
+    return true;
+  });
+  hash.add_bytes(static_cast<std::uint64_t>(fault), 1);
+  return hash.value();
+}
+
+// The ROM hash cases, shared by the host/aarch64 program and the Cortex-M
+// image so both print the same labels: out(label, hash) for each.
+// seed-case1 covers the start from rest and the grip with the axial feature;
+// clamp-step adds road load (tanh) and a flare in gross slip.
+template <class T, class Out>
+void rom_trace_hashes(Out&& out) {
+  namespace f = rom_feature;
+  out("rom/seed-case1/2s", rom_trace_hash<T, f::axial>("seed-case1", 2.0));
+  out("rom/clamp-step/2.5s", rom_trace_hash<T, f::axial | f::road_load>("clamp-step", 2.5));
 }
 
 }  // namespace cvt::testing

@@ -12,6 +12,12 @@ void print(cvt::Method m, double h, long steps) {
   std::printf("HASH %s %s %016" PRIx64 "\n", cvt::scalar_name<T>::value, cvt::method_name(m),
               cvt::testing::oscillator_trace_hash<T>(m, h, steps));
 }
+template <class T>
+void print_rom() {
+  cvt::testing::rom_trace_hashes<T>([](const char* label, std::uint64_t h) {
+    std::printf("HASH %s %s %016" PRIx64 "\n", cvt::scalar_name<T>::value, label, h);
+  });
+}
 }  // namespace
 
 int main() {
@@ -22,5 +28,9 @@ int main() {
   print<float>(cvt::Method::ros2, 1e-3, 10000);
   print<cvt::q16_16>(cvt::Method::rk4, 1.0 / 1024, 10240);
   print<cvt::q16_16>(cvt::Method::ros2, 1.0 / 1024, 10240);
+  // The reduced-order plant in every scalar type (docs/rom.md#determinism).
+  print_rom<double>();
+  print_rom<float>();
+  print_rom<cvt::q16_16>();
   return 0;
 }

@@ -3,9 +3,10 @@
 //    hardware type) and in fixed point, at a reduced horizon;
 //  * instruction counts of one oscillator step per scalar type and method
 //    (ICOUNT lines; quoted in docs/build.md#icount);
-//  * the determinism trace hashes (HASH lines), which ctest saves to
-//    trace_hash.log for tests/cross/compare-trace-hashes.sh to compare with
-//    the x86-64 and aarch64 builds.
+//  * the determinism trace hashes (HASH lines) of the oscillator and of the
+//    reduced-order plant, which ctest saves to trace_hash.log for
+//    tests/cross/compare-trace-hashes.sh to compare with the x86-64 and
+//    aarch64 builds.
 #include "../determinism/trace_hash.hpp"
 #include "cvtplant/port/icount.hpp"
 #include "harness.hpp"
@@ -22,17 +23,22 @@ StickSlipOscillator<T> seed_oscillator(const FrictionParams<double>& f) {
 }
 
 template <class T>
-void print_hash(Method m, double h_s, long steps) {
+void print_hash_line(const char* label, std::uint64_t hash) {
   auto& c = console();
-  c << "HASH " << scalar_name<T>::value << ' ' << method_name(m) << ' ';
+  c << "HASH " << scalar_name<T>::value << ' ' << label << ' ';
   // Lower-case, no prefix: the host prints with PRIx64.
   char buf[24];
-  const std::size_t n = cvt::port::format_hex(buf, sizeof buf, testing::oscillator_trace_hash<T>(m, h_s, steps), 16);
+  const std::size_t n = cvt::port::format_hex(buf, sizeof buf, hash, 16);
   for (std::size_t i = 2; i < n; ++i) {
     const char ch = buf[i];
     c << static_cast<char>(ch >= 'A' && ch <= 'F' ? ch - 'A' + 'a' : ch);
   }
   c << '\n';
+}
+
+template <class T>
+void print_hash(Method m, double h_s, long steps) {
+  print_hash_line<T>(method_name(m), testing::oscillator_trace_hash<T>(m, h_s, steps));
 }
 
 template <class T>
@@ -111,4 +117,12 @@ CVT_TARGET_TEST(oscillator_trace_hashes) {
   print_hash<float>(Method::ros2, 1e-3, 10000);
   print_hash<q16_16>(Method::rk4, 1.0 / 1024, 10240);
   print_hash<q16_16>(Method::ros2, 1.0 / 1024, 10240);
+}
+
+// The reduced-order plant's hashes (tests/determinism/trace_hash.hpp), in
+// the two types the M4F runs natively or in integers; double is soft-float
+// here and is compared between the host and aarch64 only.
+CVT_TARGET_TEST(rom_trace_hashes) {
+  testing::rom_trace_hashes<float>([](const char* label, std::uint64_t h) { print_hash_line<float>(label, h); });
+  testing::rom_trace_hashes<q16_16>([](const char* label, std::uint64_t h) { print_hash_line<q16_16>(label, h); });
 }

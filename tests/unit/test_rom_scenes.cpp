@@ -2,8 +2,11 @@
 // validation and the lumped-parameter derivation (docs/rom.md).
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
+#include "cvtplant/scalar/fixed_eigen.hpp"
 #include "cvtplant/scene/builtin_scenes.hpp"
 #include "cvtplant/scene/scene_runner.hpp"
 
@@ -219,4 +222,64 @@ TEST_CASE("lumped parameters follow from seed Table 1 (docs/rom.md#lumped-parame
   // Clamping that carries the seed's 100 N m at mu0 = 0.25: 2.54 kN.
   const double F_100 = 100.0 / (2.0 * 0.25 * r1 / std::cos(15.0 * M_PI / 180.0));
   CHECK(F_100 == doctest::Approx(2535.2).epsilon(1e-4));
+}
+
+namespace {
+
+struct Speeds {
+  std::vector<double> w1, w2, fax;
+  cvt::RomFault fault = cvt::RomFault::none;
+};
+
+template <class T, std::uint32_t F>
+Speeds run_speeds(const cvt::Scene& s) {
+  Speeds r;
+  r.fault = cvt::run_scene<T, F>(s, cvt::sim_config_of(s), [&](long, double, const cvt::RomSimulator<T, F>& sim) {
+    const auto o = sim.outputs();
+    r.w1.push_back(cvt::to_double(o.omega1_rad_s));
+    r.w2.push_back(cvt::to_double(o.omega2_rad_s));
+    r.fax.push_back(cvt::to_double(o.clamp_force_N));
+    return true;
+  });
+  return r;
+}
+
+double rel_rms(const std::vector<double>& a, const std::vector<double>& ref) {
+  if (a.size() != ref.size()) return HUGE_VAL;
+  double se = 0, sr = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    se += (a[i] - ref[i]) * (a[i] - ref[i]);
+    sr += ref[i] * ref[i];
+  }
+  return sr == 0 ? (se == 0 ? 0.0 : HUGE_VAL) : std::sqrt(se / sr);
+}
+
+template <std::uint32_t F>
+void check_fixed_against_double(const cvt::Scene& scene) {
+  cvt::Scene s = scene;
+  s.t_end_s = std::min(s.t_end_s, 10.0);  // the issue's 10 s window
+  const Speeds q = run_speeds<cvt::q16_16, F>(s);
+  const Speeds d = run_speeds<double, F>(s);
+  CHECK(q.fault == cvt::RomFault::none);
+  const double e1 = rel_rms(q.w1, d.w1), e2 = rel_rms(q.w2, d.w2), ef = rel_rms(q.fax, d.fax);
+  MESSAGE(std::string(s.name) << ": q16.16 vs double relative RMS: omega1 " << e1 << ", omega2 " << e2 << ", F_ax " << ef);
+  // Issue #3's fixed-point target is 2e-2 against the converged reference;
+  // double at this default is within 2.2e-6 of it (docs/rom.md).
+  CHECK(e1 <= 2e-2);
+  CHECK(e2 <= 2e-2);
+  CHECK(ef <= 2e-2);
+}
+
+}  // namespace
+
+TEST_CASE("fixed point (q16.16) meets 2e-2 on pulley speeds and axial force in every built-in scene") {
+  namespace f = cvt::rom_feature;
+  for (const cvt::Scene& s : cvt::kBuiltinScenes) {
+    switch (s.features) {
+      case 0: check_fixed_against_double<0>(s); break;
+      case f::axial: check_fixed_against_double<f::axial>(s); break;
+      case f::axial | f::road_load: check_fixed_against_double<f::axial | f::road_load>(s); break;
+      default: FAIL("a built-in scene uses a feature set this test does not instantiate");
+    }
+  }
 }

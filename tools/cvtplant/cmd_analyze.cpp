@@ -3,7 +3,9 @@
 // plus sweep / merge / figures / trajectory for scene studies.
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <memory>
+#include <sstream>
 #include <stdexcept>
 
 #include "commands.hpp"
@@ -13,7 +15,9 @@
 #include "cvtplant/analysis/errors.hpp"
 #include "cvtplant/analysis/figures.hpp"
 #include "cvtplant/analysis/lle.hpp"
+#include "cvtplant/analysis/rom_scenes.hpp"
 #include "cvtplant/analysis/rqa.hpp"
+#include "cvtplant/analysis/section4.hpp"
 #include "cvtplant/analysis/series.hpp"
 #include "cvtplant/analysis/sweep.hpp"
 #include "cvtplant/analysis/systems.hpp"
@@ -96,6 +100,53 @@ json rqa_json(const RqaResult& r, int m, int tau, const RqaOptions& o) {
           {"LAM", r.lam}, {"TT", r.tt},     {"Vmax", r.vmax},   {"eps", r.eps},   {"theiler", r.theiler},
           {"lmin", o.lmin}, {"vmin", o.vmin}, {"m", m},          {"tau", tau},     {"points", r.n},
           {"rule", "||y_i - y_j||_2 <= eps on the z-scored series; pairs |i-j| <= theiler excluded (line of identity never counted)"}};
+}
+
+// `classify --json` fields (docs/analysis.md#cli); the estimators are present
+// whenever classify ran them (tau > 0).
+json classification_json(const Classification& r) {
+  json j{{"classification", r.classification}, {"confidence", r.confidence}, {"evidence", r.reasons}};
+  if (r.classification != "fixed_point" || r.tau > 0) {
+    j["tau"] = r.tau;
+    j["m"] = r.m;
+    j["theiler"] = r.theiler;
+    j["deterministic"] = r.deterministic;
+    j["fnn"] = {{"m", r.fnn.m}, {"fraction", r.fnn.fraction}};
+    j["rqa"] = {{"RR", r.rqa.rr}, {"DET", r.rqa.det}, {"LAM", r.rqa.lam}, {"L", r.rqa.l_mean}, {"ENTR", r.rqa.entr}};
+    j["lle"] = {{"lambda", r.lle.fit.slope}, {"ci95", r.lle.fit.ci95}, {"fit", fit_json(r.lle.fit)}};
+    j["test01"] = {{"K", r.t01.k_median}, {"K_q25", r.t01.k_q25}, {"K_q75", r.t01.k_q75}, {"subsample", r.t01.subsample}};
+    j["spectrum"] = {{"fundamental_cycles_per_sample", r.peaks.fundamental},
+                     {"harmonic", r.peaks.harmonic},
+                     {"worst_harmonic_error", r.peaks.worst_harmonic_error},
+                     {"peaks_cycles_per_sample", r.peaks.freq}};
+  }
+  j["amplitude_decay"] = r.amplitude_decay;
+  return j;
+}
+
+// `analyze seed-section4`: one signal's summary (docs/analysis.md#seed-section4).
+json section4_json(const Section4Result& r) {
+  json j{{"signal", r.label},
+         {"points", r.points},
+         {"constant", r.constant},
+         {"stats", {{"mean", r.mean}, {"std", r.stddev}, {"min", r.min}, {"max", r.max}, {"peak_to_peak", r.max - r.min}}},
+         {"classification", r.classification},
+         {"confidence", r.confidence},
+         {"evidence", r.evidence},
+         {"figures", r.figures}};
+  if (r.constant) return j;
+  const Classification& c = r.verdict;
+  json v = classification_json(c);
+  for (const char* k : {"tau", "m", "theiler", "deterministic", "test01", "spectrum", "amplitude_decay"}) j[k] = v[k];
+  j["tau_method"] = c.ami.method;
+  j["tau_ami_first_minimum"] = c.ami.tau_ami;
+  j["fnn"] = {{"m", c.fnn.m}, {"fraction", c.fnn.fraction}, {"dimension", c.fnn.dimension}, {"reached", c.fnn.reached},
+              {"rtol", 10.0}, {"atol", 2.0}};
+  j["cao"] = {{"m", r.cao.m}, {"E1", r.cao.e1}, {"E2", r.cao.e2}, {"dimension", r.cao.dimension}, {"reached", r.cao.reached}};
+  j["lle"] = {{"rosenstein", lle_json(c.lle, "rosenstein", c.m, c.tau)},
+              {"kantz", r.kantz_error.empty() ? lle_json(r.kantz, "kantz", c.m, c.tau) : json{{"error", r.kantz_error}}}};
+  j["rqa"] = rqa_json(c.rqa, c.m, c.tau, c.rqa_options);
+  return j;
 }
 
 // Runs a body, turning library errors into the CLI's exit codes.
@@ -315,24 +366,7 @@ cvtcli::Action register_analyze(CLI::App& app) {
                        co.m = a->m;
                        co.theiler = a->theiler;
                        const Classification r = classify(x, co);
-                       json j{{"classification", r.classification}, {"confidence", r.confidence}, {"evidence", r.reasons}};
-                       if (r.classification != "fixed_point" || r.tau > 0) {
-                         j["tau"] = r.tau;
-                         j["m"] = r.m;
-                         j["theiler"] = r.theiler;
-                         j["deterministic"] = r.deterministic;
-                         j["fnn"] = {{"m", r.fnn.m}, {"fraction", r.fnn.fraction}};
-                         j["rqa"] = {{"RR", r.rqa.rr}, {"DET", r.rqa.det}, {"LAM", r.rqa.lam}, {"L", r.rqa.l_mean},
-                                     {"ENTR", r.rqa.entr}};
-                         j["lle"] = {{"lambda", r.lle.fit.slope}, {"ci95", r.lle.fit.ci95}, {"fit", fit_json(r.lle.fit)}};
-                         j["test01"] = {{"K", r.t01.k_median}, {"K_q25", r.t01.k_q25}, {"K_q75", r.t01.k_q75},
-                                        {"subsample", r.t01.subsample}};
-                         j["spectrum"] = {{"fundamental_cycles_per_sample", r.peaks.fundamental},
-                                          {"harmonic", r.peaks.harmonic},
-                                          {"worst_harmonic_error", r.peaks.worst_harmonic_error},
-                                          {"peaks_cycles_per_sample", r.peaks.freq}};
-                       }
-                       j["amplitude_decay"] = r.amplitude_decay;
+                       const json j = classification_json(r);
                        if (a->json) {
                          cvtcli::print_json(j);
                        } else {
@@ -500,6 +534,86 @@ cvtcli::Action register_analyze(CLI::App& app) {
                          cvtcli::print_json(json{{"files", files}});
                        else
                          for (const auto& f : files) std::printf("wrote %s\n", f.c_str());
+                       return 0;
+                     }});
+  }
+
+  {  // seed-section4
+    struct A {
+      std::string scene, out_dir, signals = "F_ax,torque_transmitted";
+      double t_end = -1, t_transient = 2.0;
+      int tau = -1, m = -1;
+      bool json = false;
+    };
+    auto a = std::make_shared<A>();
+    auto* c = an->add_subcommand("seed-section4",
+                                 "the seed's section 4 pipeline on ROM plant signals (1 ms samples, transient removed, "
+                                 "normalised, AMI delay, FNN/Cao dimension, Rosenstein/Kantz exponent, recurrence "
+                                 "plot + RQA, 0-1 test, verdict) with figures and a JSON summary");
+    c->add_option("--scene", a->scene, "built-in ROM scene (seed-case1, seed-case2, ...; see cvtplant scenes)")->required();
+    c->add_option("--out-dir", a->out_dir, "output directory: <signal>/*.png and summary.json")->required();
+    c->add_option("--signals", a->signals, "comma-separated plant outputs (F_ax, torque_transmitted, slip, v_rel1, ...)");
+    c->add_option("--t-end", a->t_end, "simulated time [s] (default: the scene's)");
+    c->add_option("--t-transient", a->t_transient, "removed from the start before the analysis [s]");
+    c->add_option("--tau", a->tau, "delay [samples] (default: first AMI minimum)");
+    c->add_option("--m", a->m, "embedding dimension (default: FNN)");
+    c->add_flag("--json", a->json, "print the summary as JSON");
+    tools.push_back({c, [a] {
+                       if (a->t_end != -1 && !(a->t_end > 0)) throw cvtcli::UsageError{"--t-end must be > 0"};
+                       if (!(a->t_transient >= 0) || !std::isfinite(a->t_transient))
+                         throw cvtcli::UsageError{"--t-transient must be >= 0"};
+                       if (a->tau == 0 || a->tau < -1) throw cvtcli::UsageError{"--tau must be >= 1"};
+                       if (a->m == 0 || a->m < -1) throw cvtcli::UsageError{"--m must be >= 1"};
+                       std::vector<std::string> names;
+                       {
+                         std::stringstream ss(a->signals);
+                         std::string n;
+                         while (std::getline(ss, n, ','))
+                           if (!n.empty()) names.push_back(n);
+                       }
+                       if (names.empty()) throw cvtcli::UsageError{"--signals is empty"};
+                       const RomSeries run = rom_scene_series(a->scene, names, a->t_end);
+                       ensure_dir(a->out_dir);
+                       if (run.fault != "none")
+                         throw cvtcli::RunError{"the plant faulted (" + run.fault + ") in scene " + a->scene};
+                       Section4Options so;
+                       so.dt = run.frame_s;
+                       so.discard = std::lround(a->t_transient / run.frame_s);
+                       so.tau = a->tau;
+                       so.m = a->m;
+                       json out{{"scene", a->scene},
+                                {"sample_dt_s", run.frame_s},
+                                {"t_end_s", run.t.empty() ? 0.0 : run.t.back()},
+                                {"t_transient_s", so.discard * run.frame_s},
+                                {"plant_fault", run.fault},
+                                {"normalisation", "z-score after the transient"},
+                                {"signals", json::array()}};
+                       if (a->scene == "seed-case1")
+                         out["seed_claim"] = "chaotic driver axial force (seed Figs. 18 and 21)";
+                       if (a->scene == "seed-case2")
+                         out["seed_claim"] = "mildly chaotic driver axial force (seed Figs. 19, 20 and 22)";
+                       for (const auto& n : names) {
+                         const Section4Result r =
+                             section4_pipeline(run.signal.at(n), so, a->scene + " " + n, a->out_dir + "/" + n);
+                         out["signals"].push_back(section4_json(r));
+                       }
+                       const std::string summary = a->out_dir + "/summary.json";
+                       {
+                         std::ofstream f(summary);
+                         if (!f) throw cvtcli::UsageError{"cannot write '" + summary + "'"};
+                         f << out.dump(2) << '\n';
+                       }
+                       if (a->json) {
+                         cvtcli::print_json(out);
+                         return 0;
+                       }
+                       for (const auto& j : out["signals"]) {
+                         std::printf("%s: %s (%s)\n", j["signal"].get<std::string>().c_str(),
+                                     j["classification"].get<std::string>().c_str(),
+                                     j["confidence"].get<std::string>().c_str());
+                         for (const auto& e : j["evidence"]) std::printf("  - %s\n", e.get<std::string>().c_str());
+                       }
+                       std::printf("wrote %s\n", summary.c_str());
                        return 0;
                      }});
   }

@@ -38,13 +38,26 @@ Verdict spectrum_verdict(const SpectrumResult& r) {
   std::snprintf(buf, sizeof buf, "%d exponent(s) positive, %d consistent with zero (95%% CI), %d negative", pos, zero,
                 static_cast<int>(n) - pos - zero);
   v.reasons.push_back(buf);
+  // A zero exponent that a continuous symmetry explains says nothing about the
+  // attractor (docs/analysis.md#rom-lyapunov): it is not counted.
+  if (r.symmetry_zero_exponents > 0 && zero >= r.symmetry_zero_exponents) {
+    zero -= r.symmetry_zero_exponents;
+    std::snprintf(buf, sizeof buf, "%d zero exponent(s) explained by a symmetry, not counted", r.symmetry_zero_exponents);
+    v.reasons.push_back(buf);
+  }
   if (r.is_map) {
     v.classification = pos > 0 ? "chaotic" : (zero > 0 ? "inconclusive" : "fixed_point_or_periodic");
     return v;
   }
   if (pos == 0 && zero == 0) {
     v.classification = "fixed_point";
-    std::snprintf(buf, sizeof buf, "all exponents negative; final |f(x)| = %.3g", r.final_speed);
+    if (r.symmetry_zero_exponents > 0)
+      std::snprintf(buf, sizeof buf,
+                    "all other exponents negative: a relative equilibrium (constant slip while the speeds grow, "
+                    "|f(x)| = %.3g at the end)",
+                    r.final_speed);
+    else
+      std::snprintf(buf, sizeof buf, "all exponents negative; final |f(x)| = %.3g", r.final_speed);
     v.reasons.push_back(buf);
   } else if (pos == 0 && zero == 1) {
     v.classification = "periodic";
@@ -59,6 +72,10 @@ Verdict spectrum_verdict(const SpectrumResult& r) {
     v.classification = "inconclusive";
     v.reasons.push_back("a positive exponent but no neutral one: an autonomous flow must have a zero exponent, so the "
                         "run is not converged (increase --t-end or decrease --dt)");
+  }
+  if (!r.smooth_along_orbit) {
+    v.classification = "inconclusive";
+    v.reasons.push_back("the orbit met a kink of the vector field: the exponents are not reliable (see notes)");
   }
   std::snprintf(buf, sizeof buf, "lambda_1(t) = a + b/t fit: a = %.3g +- %.2g", r.lambda1_extrapolated,
                 1.96 * r.lambda1_extrapolated_se);
@@ -92,6 +109,11 @@ nlohmann::json to_json(const SpectrumResult& r) {
   j["t_warmup"] = r.t_warmup;
   j["t_end"] = r.t_end;
   j["t_renorm"] = r.t_renorm;
+  j["reliable"] = r.smooth_along_orbit;
+  j["symmetry_zero_exponents"] = r.symmetry_zero_exponents;
+  if (!r.notes.empty()) j["notes"] = r.notes;
+  if (!r.diagnostics.empty()) j["diagnostics"] = r.diagnostics;
+  if (!r.jacobian_eigen_real_final.empty()) j["jacobian_eigenvalues_real_final"] = r.jacobian_eigen_real_final;
   return j;
 }
 
@@ -105,14 +127,16 @@ cvtcli::Action register_lyapunov(CLI::App& app) {
     bool json = false, dt_check = false, list = false;
   };
   auto a = std::make_shared<Args>();
-  sub->add_option("--scene", a->scene, "lorenz, rossler, oscillator-coulomb, oscillator-stribeck, henon, logistic");
+  sub->add_option("--scene", a->scene,
+                  "lorenz, rossler, oscillator-coulomb, oscillator-stribeck, henon, logistic, and the ROM plant's "
+                  "seed-case1, seed-case2 (see --list)");
   sub->add_option("--x0", a->x0, "initial state, comma-separated (default: the scene's; oscillators: 0,3,0,6)");
   sub->add_option("--param", a->params, "override a scene parameter, name=value (repeatable)");
   sub->add_option("--t-transient", a->t_transient, "discarded time [s] (maps: iterations)");
   sub->add_option("--t-warmup", a->t_warmup, "deviation-vector warm-up [s], not accumulated");
   sub->add_option("--t-end", a->t_end, "accumulation time [s] (maps: iterations)");
   sub->add_option("--dt", a->dt, "RK4 step [s]");
-  sub->add_option("--t-renorm", a->t_renorm, "QR interval [s] (default max(dt, 0.05))");
+  sub->add_option("--t-renorm", a->t_renorm, "QR interval [s] (default: the scene's; max(dt, 0.05) for the reference systems, 1e-3 for the ROM)");
   sub->add_option("--batches", a->batches, "batches for the confidence interval (>= 2)");
   sub->add_flag("--dt-check", a->dt_check, "repeat with dt/2 and report the change of each exponent");
   sub->add_flag("--list", a->list, "list scenes and their parameters");
@@ -172,8 +196,11 @@ cvtcli::Action register_lyapunov(CLI::App& app) {
       j["classification"] = v.classification;
       j["evidence"] = v.reasons;
       if (a->dt_check && !s.is_map) {
+        // Halve the step actually used (ROM scenes shorten --dt from their
+        // stiffness) and keep the QR interval.
         BenettinOptions o2 = o;
-        o2.dt = o.dt / 2;
+        o2.dt = r.dt / 2;
+        o2.t_renorm = r.t_renorm;
         SpectrumResult r2;
         try {
           r2 = s.spectrum(p, x0, o2);
@@ -203,6 +230,12 @@ cvtcli::Action register_lyapunov(CLI::App& app) {
         for (double e : row.exponents) std::printf(" %+.6f", e);
         std::printf("\n");
       }
+      if (!r.jacobian_eigen_real_final.empty()) {
+        std::printf("real parts of the eigenvalues of J at the final state:");
+        for (double e : r.jacobian_eigen_real_final) std::printf(" %+.6f", e);
+        std::printf("\n");
+      }
+      for (const auto& note : r.notes) std::printf("note: %s\n", note.c_str());
       std::printf("classification: %s\n", v.classification.c_str());
       for (const auto& s2 : v.reasons) std::printf("  - %s\n", s2.c_str());
       if (j.contains("dt_check"))

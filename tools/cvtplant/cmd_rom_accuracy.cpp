@@ -14,50 +14,19 @@
 #include "commands.hpp"
 #include "io_util.hpp"
 #include "registry.hpp"
-#include "rom_dispatch.hpp"
+#include "cmd_rom_accuracy_collector.hpp"
 #include "scene_file.hpp"
 #include "cvtplant/scene/scene_runner.hpp"
 
 namespace {
 
-struct Trace {
-  std::vector<double> w1, w2, fax, xd1;
-  cvt::RomFault fault = cvt::RomFault::none;
-  long frames = 0;
-  double wall_s = 0;
-  double residual_rel = 0;
-};
+using cvtcli::rom_accuracy_cmd::Collector;
+using cvtcli::rom_accuracy_cmd::Trace;
 
-struct Collector {
-  const cvt::Scene& scene;
-  cvt::RomSimConfig cfg;
-
-  template <class T, std::uint32_t F>
-  Trace call() {
-    Trace tr;
-    const long n = static_cast<long>(scene.t_end_s / cfg.frame_s + 0.5);
-    tr.w1.reserve(n + 1);
-    tr.w2.reserve(n + 1);
-    tr.fax.reserve(n + 1);
-    tr.xd1.reserve(n + 1);
-    auto on_frame = [&](long i, double, const cvt::RomSimulator<T, F>& sim) {
-      if (sim.fault() != cvt::RomFault::none) return false;
-      const auto o = sim.outputs();
-      tr.w1.push_back(cvt::to_double(o.omega1_rad_s));
-      tr.w2.push_back(cvt::to_double(o.omega2_rad_s));
-      tr.fax.push_back(cvt::to_double(o.clamp_force_N));
-      tr.xd1.push_back(cvt::to_double(sim.state()(cvt::RomLayout<F>::kV1)));
-      tr.frames = i;
-      const auto& e = sim.energy();
-      tr.residual_rel = e.scale_J() > 0 ? double(e.residual_J() / e.scale_J()) : 0.0;
-      return true;
-    };
-    const auto t0 = std::chrono::steady_clock::now();
-    tr.fault = cvt::run_scene<T, F>(scene, cfg, on_frame);
-    tr.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    return tr;
-  }
-};
+Trace collect(cvt::ScalarKind k, Collector& c) {
+  namespace ra = cvtcli::rom_accuracy_cmd;
+  return cvtcli::by_scalar(k, c, &ra::collect_double, &ra::collect_float, &ra::collect_fixed);
+}
 
 // RMS(a - ref) / RMS(ref) over the common frames; inf if the candidate stopped early.
 double rel_rms(const std::vector<double>& a, const std::vector<double>& ref) {
@@ -121,7 +90,7 @@ cvtcli::Action register_rom_accuracy(CLI::App& app) {
     rc.substeps = opt->ref_substeps;
     rc.watchdog_energy = false;
     Collector refc{s, rc};
-    const Trace ref = cvtcli::with_plant(cvt::ScalarKind::f64, s.features, refc);
+    const Trace ref = collect(cvt::ScalarKind::f64, refc);
     if (ref.fault != cvt::RomFault::none) throw cvtcli::RunError{"the reference run faulted"};
 
     nlohmann::json rows = nlohmann::json::array();
@@ -133,7 +102,7 @@ cvtcli::Action register_rom_accuracy(CLI::App& app) {
       cc.method = c.m;
       cc.substeps = c.substeps;
       Collector col{s, cc};
-      const Trace tr = cvtcli::with_plant(sk, s.features, col);
+      const Trace tr = collect(sk, col);
       const double e1 = rel_rms(tr.w1, ref.w1), e2 = rel_rms(tr.w2, ref.w2), ef = rel_rms(tr.fax, ref.fax),
                    ex = rel_rms(tr.xd1, ref.xd1);
       const double ns = 1e9 * tr.wall_s / std::max<long>(1, tr.frames);

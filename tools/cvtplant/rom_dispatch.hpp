@@ -4,7 +4,6 @@
 // bits is instantiated, so any scene file runs; firmware instantiates only
 // the plant it ships.
 #include <cstdint>
-#include <utility>
 
 #include "cvtplant/scalar/fixed_eigen.hpp"
 #include "cvtplant/scalar/scalar.hpp"
@@ -27,13 +26,16 @@ decltype(auto) with_features(std::uint32_t features, Fn&& fn) {
   }
 }
 
-template <class Fn>
-decltype(auto) with_plant(cvt::ScalarKind scalar, std::uint32_t features, Fn&& fn) {
+// Calls the entry point for `scalar`. Commands keep one entry point per
+// scalar, each in its own translation unit (cmd_<name>_{double,float,fixed}.cpp,
+// calling with_features<T>), so the 48 plant types compile in parallel.
+template <class R, class Arg>
+R by_scalar(cvt::ScalarKind scalar, Arg& arg, R (*f64)(Arg&), R (*f32)(Arg&), R (*q16)(Arg&)) {
   switch (scalar) {
-    case cvt::ScalarKind::f32: return with_features<float>(features, std::forward<Fn>(fn));
-    case cvt::ScalarKind::q16_16: return with_features<cvt::q16_16>(features, std::forward<Fn>(fn));
+    case cvt::ScalarKind::f32: return f32(arg);
+    case cvt::ScalarKind::q16_16: return q16(arg);
     case cvt::ScalarKind::f64:
-    default: return with_features<double>(features, std::forward<Fn>(fn));
+    default: return f64(arg);
   }
 }
 

@@ -63,16 +63,25 @@ Classification classify(const std::vector<double>& x, const ClassifyOptions& opt
   validate_series(x, 500, "classify");
   if (!(opt.dt > 0)) throw InputError("classify: dt must be > 0");
   Classification c;
-  // 1. Decay to a fixed point: amplitude falls monotonically by 100x or more.
+  // 1. Decay to a fixed point (docs/analysis.md#classify): the amplitude falls
+  // monotonically by 100x or more, or it is still falling geometrically (by
+  // >= 1.5x from each quarter to the next, >= 10x in all) at the end of the
+  // series: a stationary motion (periodic, quasi-periodic, chaotic) keeps its
+  // amplitude, and a transient towards a cycle levels off.
   const double s1 = quarter_std(x, 0), s2 = quarter_std(x, 1), s3 = quarter_std(x, 2), s4 = quarter_std(x, 3);
   c.amplitude_decay = s4 > 0 ? s1 / s4 : 1e300;
   double scale = 0;
   for (double v : x) scale = std::max(scale, std::abs(v));
-  if ((s4 <= 1e-2 * s1 && s4 <= s3 && s3 <= s2) || s4 <= 1e-9 * scale) {
+  const bool geometric = s4 > 0 && s2 >= 1.5 * s3 && s1 >= 1.5 * s2 && s3 >= 1.5 * s4 && s1 >= 10 * s4;
+  const bool decays = (s4 <= 1e-2 * s1 && s4 <= s3 && s3 <= s2) || s4 <= 1e-9 * scale || geometric;
+  if (decays) {
     c.classification = "fixed_point";
     c.confidence = s4 <= 1e-3 * s1 ? "strong" : "weak";
     c.reasons.push_back(fmt("amplitude (std) decays %.3g-fold from the first to the last quarter", c.amplitude_decay));
-    return c;
+    if (s4 > 0)
+      c.reasons.push_back(fmt("quarter-to-quarter std ratios %.3g, %.3g, %.3g: still decaying at the end", s1 / s2,
+                              s2 / s3, s3 / s4));
+    if (!opt.full_evidence) return c;
   }
   const std::vector<double> z = zscore(x);
   c.theiler = opt.theiler >= 0 ? opt.theiler : default_theiler(z);
@@ -87,14 +96,14 @@ Classification classify(const std::vector<double>& x, const ClassifyOptions& opt
   const double fnn_min = *std::min_element(c.fnn.fraction.begin(), c.fnn.fraction.end());
 
   const Embedding e = delay_embed(z, c.m, c.tau);
-  RqaOptions ro;
+  RqaOptions& ro = c.rqa_options;
   ro.target_rr = 0.02;
   ro.theiler = c.theiler;
   ro.lmin = default_lmin(c.m, c.tau);
   ro.vmin = ro.lmin;
   c.rqa = rqa(e, ro);
 
-  LleOptions lo;
+  LleOptions& lo = c.lle_options;
   lo.m = c.m;
   lo.tau = c.tau;
   lo.theiler = c.theiler;
@@ -120,6 +129,10 @@ Classification classify(const std::vector<double>& x, const ClassifyOptions& opt
   const double lam = c.lle.fit.slope, ci = c.lle.fit.ci95;
   c.reasons.push_back(fmt("largest exponent (Rosenstein) %.4g +- %.2g per unit time, %.3g per mean period", lam, ci,
                           lam * period_s));
+  if (decays) {
+    c.reasons.push_back("the decay decides: the estimators above describe the transient towards the fixed point");
+    return c;
+  }
   if (!c.deterministic) {
     c.classification = "inconclusive";
     c.confidence = "weak";

@@ -2,6 +2,7 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -17,7 +18,6 @@
 #include "cvtplant/analysis/series.hpp"
 
 namespace cvt::analysis {
-namespace {
 
 void ensure_dir(const std::string& d) {
   struct stat st {};
@@ -27,6 +27,8 @@ void ensure_dir(const std::string& d) {
   }
   if (mkdir(d.c_str(), 0755) != 0) throw InputError("cannot create directory '" + d + "'");
 }
+
+namespace {
 
 std::ofstream open(const std::string& path) {
   std::ofstream f(path);
@@ -111,7 +113,8 @@ std::vector<std::string> series_figures(const std::vector<double>& x_raw, double
       << ", " << lle.fit.ci95 << ")\nset xlabel 't'\nset ylabel '<ln d(t)>'\n"
       << "f(t) = " << y0 << " + " << lle.fit.slope << "*(t - " << t0 << ")\n"
       << "plot '" << D << "divergence.dat' u 1:2 w l t 'divergence', [" << t0 << ":" << t1
-      << "] f(x) lw 2 t 'fit (scaling region)'\n";
+      << "] f(x) lw 2 t '" << (lle.fit.scaling_region ? "fit (scaling region)" : "fit (no scaling region: a bound only)")
+      << "'\n";
   }
   run_gnuplot(D + "series.gp");
   // Recurrence plot of at most 4000 points (the PNG is at most 1000 px).
@@ -121,6 +124,38 @@ std::vector<std::string> series_figures(const std::vector<double>& x_raw, double
   write_recurrence_png(e, eps, -1, D + "recurrence.png", 1000);
   return {D + "time_history.png", D + "delay_reconstruction.png", D + "ami.png", D + "fnn.png", D + "divergence.png",
           D + "recurrence.png"};
+}
+
+std::string run_time_history_figure(const std::vector<double>& x, double dt, long discard, const std::string& label,
+                                    const std::string& out_dir) {
+  ensure_dir(out_dir);
+  if (x.empty()) throw InputError("figures: empty series");
+  const std::string D = out_dir + "/";
+  double lo = x[0], hi = x[0];
+  {
+    auto f = open(D + "run.dat");
+    f.precision(15);
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      f << i * dt << ' ' << x[i] << '\n';
+      lo = std::min(lo, x[i]);
+      hi = std::max(hi, x[i]);
+    }
+  }
+  // gnuplot cannot draw an empty y range; a constant series gets +-1 % (or +-1).
+  const double pad = hi - lo > 1e-9 * std::max(std::abs(hi), std::abs(lo)) ? 0.05 * (hi - lo)
+                                                                           : std::max(1.0, 0.01 * std::abs(hi));
+  const double t_tr = discard * dt;
+  auto s = open(D + "run.gp");
+  s.precision(15);
+  s << kTerm << "set output '" << D << "run_time_history.png'\nset title '" << label
+    << ": whole run (shaded: transient, not analysed)'\nset xlabel 't [s]'\nset yrange [" << lo - pad << ":"
+    << hi + pad << "]\n";
+  if (discard > 0)
+    s << "set object 1 rect from 0,graph 0 to " << t_tr << ",graph 1 fc rgb '#dddddd' fs solid noborder behind\n";
+  s << "plot '" << D << "run.dat' u 1:2 w l notitle\n";
+  s.close();
+  run_gnuplot(D + "run.gp");
+  return D + "run_time_history.png";
 }
 
 std::vector<std::string> scene_figures(const Scene& sc, const Params& p, const std::vector<double>& x0, double dt,

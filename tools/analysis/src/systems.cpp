@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "cvtplant/analysis/errors.hpp"
+#include "cvtplant/analysis/rom_scenes.hpp"
 #include "cvtplant/plant/oscillator.hpp"
 
 namespace cvt::analysis {
@@ -235,6 +236,7 @@ std::vector<Scene>& table() {
       };
       v.push_back(s);
     }
+    add_rom_scenes(v);
     return v;
   }();
   return t;
@@ -259,8 +261,7 @@ const Scene& find_scene(const std::string& name) {
     if (s.name == name) return s;
     known += (known.empty() ? "" : ", ") + s.name;
   }
-  throw InputError("unknown scene '" + name + "' (known: " + known +
-                   "; the CVT scenes seed-case1/seed-case2 are not available yet)");
+  throw InputError("unknown scene '" + name + "' (known: " + known + ")");
 }
 
 Params merge_params(const Scene& s, const Params& overrides) {

@@ -20,9 +20,31 @@
 #include "cvtplant/integrate/system.hpp"
 #include "cvtplant/math/detmath.hpp"
 #include "cvtplant/plant/rom_params.hpp"
+#include "cvtplant/scalar/fixed_eigen.hpp"
 #include "cvtplant/scalar/scalar.hpp"
 
 namespace cvt {
+
+// Internal units of the plant (docs/rom.md#fixed-point). Floating point runs
+// in SI: every factor is 1 and folds away at compile time, so float and
+// double results are those of the plain SI equations, bit for bit. Fixed point
+// measures time in units of 2^-10 s and the lump and sheave displacements in
+// 2^-10 m: the stick stiffness per time unit (1.2e4 at 3.3 kN) and the bolt
+// stiffness per length unit (1483 N) then fit q16.16, and the step is 0.512
+// units instead of 33 LSB of seconds. Velocities stay in m/s and rad/s, since
+// 2^-10 m per 2^-10 s is 1 m/s: position rows need no factor at all.
+template <class T>
+struct RomUnits {
+  static constexpr bool kScaled = false;
+  static constexpr double time_s = 1.0;    // one time unit [s]
+  static constexpr double length_m = 1.0;  // one unit of x1, x2, delta [m]
+};
+template <int FracBits>
+struct RomUnits<Fixed<FracBits>> {
+  static constexpr bool kScaled = true;
+  static constexpr double time_s = 1.0 / 1024.0;
+  static constexpr double length_m = time_s;  // = time unit x 1 m/s
+};
 
 // State layout for a feature mask (docs/rom.md#state).
 template <std::uint32_t F>
@@ -72,6 +94,7 @@ class CvtRom {
   static constexpr int kStates = L::kStates;
   static constexpr std::uint32_t kPositionMask = L::kPositionMask;
   using Layout = L;
+  using U = RomUnits<T>;
   using State = Eigen::Matrix<T, kStates, 1>;
   using Jacobian = Eigen::Matrix<T, kStates, kStates>;
   // Energy bookkeeping runs in float for fixed point (energies of 1e5 J do
@@ -86,9 +109,10 @@ class CvtRom {
     c_.inv_J1 = T(1.0 / p.J1_kgm2);
     c_.inv_J2 = T(1.0 / p.J2_kgm2);
     c_.inv_m = T(1.0 / p.lump_mass_kg);
-    c_.k1 = T(p.k1_N_m);
+    // Springs act on displacements, so they are stored per length unit.
+    c_.k1 = T(p.k1_N_m * U::length_m);
     c_.c1 = T(p.c1_Ns_m);
-    c_.k2 = T(p.k2_N_m);
+    c_.k2 = T(p.k2_N_m * U::length_m);
     c_.c2 = T(p.c2_Ns_m);
     c_.friction = p.friction.template cast<T>();
     // docs/rom.md#deformation: beta_i = beta0 + Delta/2 sin(zeta_i - theta_c + pi/2),
@@ -107,12 +131,15 @@ class CvtRom {
     c_.hold1 = p.hold_driver_speed;
     c_.hold2 = p.hold_driven_speed;
     c_.stick_speed = T(p.stick_speed_m_s);
+    c_.tu = T(U::time_s);
     if constexpr (L::kAxial) {
-      c_.inv_tau_h = T(1.0 / p.actuator_tau_s);
+      // Per time unit in the constant (0.049 in fixed point, 3200 LSB): one
+      // rounding of (F_cmd - F_h) x constant, not a rounded rate times 50.
+      c_.inv_tau_h = T(U::time_s / p.actuator_tau_s);
       c_.clamp_max = T(p.clamp_max_N);
       c_.inv_ms = T(1.0 / p.sheave_mass_kg);
       c_.cs = T(p.sheave_damping_Ns_m);
-      c_.K_ax = T(p.K_ax_N_m);
+      c_.K_ax = T(p.K_ax_N_m * U::length_m);
     }
     if constexpr (L::kRoad) {
       c_.T0 = T(p.road_T0_Nm);
@@ -154,18 +181,37 @@ class CvtRom {
     State x = State::Zero();
     x(L::kW1) = T(x0.omega1_rad_s);
     x(L::kW2) = T(x0.omega2_rad_s);
-    x(L::kX1) = T(x0.x1_m);
+    x(L::kX1) = T(x0.x1_m / U::length_m);
     x(L::kV1) = T(x0.xd1_m_s);
-    x(L::kX2) = T(x0.x2_m);
+    x(L::kX2) = T(x0.x2_m / U::length_m);
     x(L::kV2) = T(x0.xd2_m_s);
     if constexpr (L::kAxial) {
       const T fh = saturated_command();
       x(L::kFh) = fh;
-      x(L::kDelta) = T(to_double(fh) / p_.K_ax_N_m);
+      x(L::kDelta) = T(to_double(fh) / p_.K_ax_N_m / U::length_m);
       x(L::kDeltaDot) = T(0);
     }
     if constexpr (L::kPolygon) x(L::kPsi) = T(x0.phase_rad);
     return x;
+  }
+
+  // A state in SI units (rad/s, m, m/s, N, rad), for logs and tests.
+  Eigen::Matrix<double, kStates, 1> to_si(const State& x) const {
+    Eigen::Matrix<double, kStates, 1> y;
+    for (int i = 0; i < kStates; ++i) y(i) = to_double(x(i));
+    y(L::kX1) *= U::length_m;
+    y(L::kX2) *= U::length_m;
+    if constexpr (L::kAxial) y(L::kDelta) *= U::length_m;
+    return y;
+  }
+
+  // A rate per second as a rate per time unit (docs/rom.md#fixed-point). The
+  // factor is applied to each equation's SI result, before anything large
+  // multiplies it, so no intermediate leaves the fixed-point range.
+  template <class S>
+  S per_tau(const S& v) const {
+    if constexpr (U::kScaled) return v * S(c_.tu);
+    return v;
   }
 
   // Keeps the polygon phase in [-alpha, alpha) between steps (it is periodic
@@ -227,22 +273,25 @@ class CvtRom {
     const S mid = S(c_.k2) * (x1 - x2) + S(c_.c2) * (xd1 - xd2);
     const S strand1 = S(c_.k1) * x1 + S(c_.c1) * xd1;
     const S strand2 = S(c_.k1) * x2 + S(c_.c1) * xd2;
-    const S w1dot = c_.hold1 ? S(T(0)) : (S(inputs.tau_in_Nm) - r1e * (F1 + F2)) * S(c_.inv_J1);
-    const S w2dot = c_.hold2 ? S(T(0)) : (S(c_.r2) * (strand1 + strand2) - load_torque(w2)) * S(c_.inv_J2);
+    // Rates per time unit (per_tau; docs/rom.md#fixed-point). Displacement
+    // rows need no factor: length unit / time unit = 1 m/s.
+    const S w1dot = c_.hold1 ? S(T(0)) : per_tau((S(inputs.tau_in_Nm) - r1e * (F1 + F2)) * S(c_.inv_J1));
+    const S w2dot = c_.hold2 ? S(T(0)) : per_tau((S(c_.r2) * (strand1 + strand2) - load_torque(w2)) * S(c_.inv_J2));
     const S chain_acc = S(c_.r2) * w2dot;
     dxdt(L::kW1) = w1dot;
     dxdt(L::kW2) = w2dot;
     dxdt(L::kX1) = xd1;
-    dxdt(L::kV1) = (F1 - strand1 - mid) * S(c_.inv_m) - chain_acc;
+    dxdt(L::kV1) = per_tau((F1 - strand1 - mid) * S(c_.inv_m)) - chain_acc;
     dxdt(L::kX2) = xd2;
-    dxdt(L::kV2) = (F2 - strand2 + mid) * S(c_.inv_m) - chain_acc;
+    dxdt(L::kV2) = per_tau((F2 - strand2 + mid) * S(c_.inv_m)) - chain_acc;
     if constexpr (L::kAxial) {
       const S fh = x(L::kFh), dd = x(L::kDeltaDot);
+      // inv_tau_h is per time unit already (a kN step times 50 1/s leaves q16.16).
       dxdt(L::kFh) = (S(saturated_command()) - fh) * S(c_.inv_tau_h);
       dxdt(L::kDelta) = dd;
-      dxdt(L::kDeltaDot) = (fh - fax - S(c_.cs) * dd) * S(c_.inv_ms);
+      dxdt(L::kDeltaDot) = per_tau((fh - fax - S(c_.cs) * dd) * S(c_.inv_ms));
     }
-    if constexpr (L::kPolygon) dxdt(L::kPsi) = w1;
+    if constexpr (L::kPolygon) dxdt(L::kPsi) = per_tau(w1);
   }
 
   // Analytic Jacobian (docs/rom.md#jacobian). Held pulleys get zero rows AND
@@ -258,9 +307,10 @@ class CvtRom {
     const T vr1 = (vc + xd1) - v1, vr2 = (vc + xd2) - v1;
     const T fax = clamp_force(x);
     const T N1 = fax * c_.inv_cos1, N2 = fax * c_.inv_cos2;
-    // dF_i/dv_rel_i = -phi'(v_rel) N_i
-    const T g1 = -friction_characteristic_slope(c_.friction, vr1) * N1;
-    const T g2 = -friction_characteristic_slope(c_.friction, vr2) * N2;
+    // dF_i/dv_rel_i = -phi'(v_rel) N_i, per time unit: phi' N alone (5e6
+    // N s/m at 3.3 kN) would not fit q16.16, phi' per time unit does.
+    const T g1 = -per_tau(friction_characteristic_slope(c_.friction, vr1)) * N1;
+    const T g2 = -per_tau(friction_characteristic_slope(c_.friction, vr2)) * N2;
     const T gs = g1 + g2;
     const T im = c_.inv_m;
     const bool free1 = !c_.hold1, free2 = !c_.hold2;
@@ -274,14 +324,15 @@ class CvtRom {
         const T th = dm::tanh(w2 * c_.inv_w_eps);
         dtl = c_.T0 * (T(1) - th * th) * c_.inv_w_eps + c_.cv + (c_.ca + c_.ca) * dm::abs(w2);
       }
-      rw2[L::kW2] = -dtl * c_.inv_J2;
-      rw2[L::kX1] = c_.r2 * c_.k1 * c_.inv_J2;
-      rw2[L::kV1] = c_.r2 * c_.c1 * c_.inv_J2;
-      rw2[L::kX2] = c_.r2 * c_.k1 * c_.inv_J2;
-      rw2[L::kV2] = c_.r2 * c_.c1 * c_.inv_J2;
+      rw2[L::kW2] = per_tau(-dtl * c_.inv_J2);
+      rw2[L::kX1] = per_tau(c_.r2 * c_.k1 * c_.inv_J2);
+      rw2[L::kV1] = per_tau(c_.r2 * c_.c1 * c_.inv_J2);
+      rw2[L::kX2] = per_tau(c_.r2 * c_.k1 * c_.inv_J2);
+      rw2[L::kV2] = per_tau(c_.r2 * c_.c1 * c_.inv_J2);
       for (int j = 0; j < kStates; ++j) J(L::kW2, j) = rw2[j];
     }
-    // Partials of F_i w.r.t. the states, columns w1, w2, xd_i, delta, psi.
+    // Partials of F_i w.r.t. the states, columns w1, w2, xd_i, delta, psi,
+    // per time unit like g_i.
     T dF1[kStates], dF2[kStates];
     for (int j = 0; j < kStates; ++j) dF1[j] = dF2[j] = T(0);
     dF1[L::kW1] = -g1 * r1e;
@@ -293,8 +344,8 @@ class CvtRom {
     if constexpr (L::kAxial) {
       if (x(L::kDelta) > T(0)) {
         // dF_i/dF_ax = -phi(v_rel_i) / cos(beta_i)
-        dF1[L::kDelta] = -friction_characteristic(c_.friction, vr1) * c_.inv_cos1 * c_.K_ax;
-        dF2[L::kDelta] = -friction_characteristic(c_.friction, vr2) * c_.inv_cos2 * c_.K_ax;
+        dF1[L::kDelta] = per_tau(-friction_characteristic(c_.friction, vr1) * c_.inv_cos1 * c_.K_ax);
+        dF2[L::kDelta] = per_tau(-friction_characteristic(c_.friction, vr2) * c_.inv_cos2 * c_.K_ax);
       }
     }
     T sin_psi = T(0);
@@ -314,7 +365,7 @@ class CvtRom {
         const T F1 = -friction_characteristic(c_.friction, vr1) * N1;
         const T F2 = -friction_characteristic(c_.friction, vr2) * N2;
         // d(r1e)/dpsi = -r1 sin(psi)
-        J(L::kW1, L::kPsi) += c_.r1 * sin_psi * (F1 + F2) * c_.inv_J1;
+        J(L::kW1, L::kPsi) += per_tau(c_.r1 * sin_psi * (F1 + F2) * c_.inv_J1);
       }
     }
     (void)gs;
@@ -324,22 +375,22 @@ class CvtRom {
       J(L::kV1, j) = dF1[j] * im - c_.r2 * rw2[j];
       J(L::kV2, j) = dF2[j] * im - c_.r2 * rw2[j];
     }
-    J(L::kV1, L::kX1) += -(c_.k1 + c_.k2) * im;
-    J(L::kV1, L::kX2) += c_.k2 * im;
-    J(L::kV1, L::kV1) += -(c_.c1 + c_.c2) * im;
-    J(L::kV1, L::kV2) += c_.c2 * im;
-    J(L::kV2, L::kX1) += c_.k2 * im;
-    J(L::kV2, L::kX2) += -(c_.k1 + c_.k2) * im;
-    J(L::kV2, L::kV1) += c_.c2 * im;
-    J(L::kV2, L::kV2) += -(c_.c1 + c_.c2) * im;
+    J(L::kV1, L::kX1) += per_tau(-(c_.k1 + c_.k2) * im);
+    J(L::kV1, L::kX2) += per_tau(c_.k2 * im);
+    J(L::kV1, L::kV1) += per_tau(-(c_.c1 + c_.c2) * im);
+    J(L::kV1, L::kV2) += per_tau(c_.c2 * im);
+    J(L::kV2, L::kX1) += per_tau(c_.k2 * im);
+    J(L::kV2, L::kX2) += per_tau(-(c_.k1 + c_.k2) * im);
+    J(L::kV2, L::kV1) += per_tau(c_.c2 * im);
+    J(L::kV2, L::kV2) += per_tau(-(c_.c1 + c_.c2) * im);
     if constexpr (L::kAxial) {
       J(L::kFh, L::kFh) = -c_.inv_tau_h;
       J(L::kDelta, L::kDeltaDot) = T(1);
-      J(L::kDeltaDot, L::kFh) = c_.inv_ms;
-      J(L::kDeltaDot, L::kDelta) = x(L::kDelta) > T(0) ? -c_.K_ax * c_.inv_ms : T(0);
-      J(L::kDeltaDot, L::kDeltaDot) = -c_.cs * c_.inv_ms;
+      J(L::kDeltaDot, L::kFh) = per_tau(c_.inv_ms);
+      J(L::kDeltaDot, L::kDelta) = x(L::kDelta) > T(0) ? per_tau(-c_.K_ax * c_.inv_ms) : T(0);
+      J(L::kDeltaDot, L::kDeltaDot) = per_tau(-c_.cs * c_.inv_ms);
     }
-    if constexpr (L::kPolygon) J(L::kPsi, L::kW1) = T(1);
+    if constexpr (L::kPolygon) J(L::kPsi, L::kW1) = per_tau(T(1));
   }
 
   RomOutputs<T> outputs(const State& x) const {
@@ -373,6 +424,12 @@ class CvtRom {
   Acc stored_energy(const State& xs) const {
     Acc x[kStates];
     for (int i = 0; i < kStates; ++i) x[i] = to_acc(xs(i));
+    if constexpr (U::kScaled) {
+      // Displacements back to metres: energies of 1e5 J are only kept in float.
+      x[L::kX1] *= Acc(U::length_m);
+      x[L::kX2] *= Acc(U::length_m);
+      if constexpr (L::kAxial) x[L::kDelta] *= Acc(U::length_m);
+    }
     const Acc w1 = x[L::kW1], w2 = x[L::kW2];
     const Acc vc = a_.r2 * w2;
     const Acc u1 = vc + x[L::kV1], u2 = vc + x[L::kV2];
@@ -429,6 +486,7 @@ class CvtRom {
     T r1{}, r2{}, inv_J1{}, inv_J2{}, inv_m{}, k1{}, c1{}, k2{}, c2{};
     FrictionParams<T> friction{};
     T inv_cos1{}, inv_cos2{}, stick_speed{};
+    T tu{};  // one time unit [s] (RomUnits)
     bool hold1 = false, hold2 = false;
     T inv_tau_h{}, clamp_max{}, inv_ms{}, cs{}, K_ax{};
     T T0{}, cv{}, ca{}, inv_w_eps{};

@@ -9,6 +9,7 @@
 
 #include "cvtplant/integrate/method.hpp"
 #include "cvtplant/plant/cvt_rom.hpp"
+#include "cvtplant/plant/rom_step.hpp"
 
 namespace cvt {
 
@@ -68,7 +69,9 @@ class RomSimulator {
   RomSimulator(const RomParams& p, const RomSimConfig& c)
       : plant_(p),
         cfg_(c),
-        h_(T(c.frame_s / static_cast<double>(c.substeps < 1 ? 1 : c.substeps))),
+        // The plant integrates in its own time unit (RomUnits; 1 s except
+        // fixed point); the ledger stays in seconds.
+        h_(T(c.frame_s / static_cast<double>(c.substeps < 1 ? 1 : c.substeps) / Plant::U::time_s)),
         h_acc_(Acc(c.frame_s / static_cast<double>(c.substeps < 1 ? 1 : c.substeps))),
         rel_tol_(Acc(c.energy_rel_tol)),
         abs_tol_(Acc(c.energy_abs_tol_J)) {
@@ -99,7 +102,7 @@ class RomSimulator {
     const int n = cfg_.substeps < 1 ? 1 : cfg_.substeps;
     RomPower<Acc> p0 = plant_.power(x_);
     for (int i = 0; i < n; ++i) {
-      step(cfg_.method, plant_, x_, h_);
+      rom_step(cfg_.method, plant_, x_, h_);
       plant_.wrap(x_);
       if (const RomFault f = check_state(x_); f != RomFault::none) {
         x_ = x_prev;
@@ -132,13 +135,17 @@ class RomSimulator {
   }
 
   RomOutputs<T> outputs() const { return plant_.outputs(x_); }
+  // The state in the plant's units (RomUnits: SI except fixed point, whose
+  // displacements are in 2^-10 m); state_si() converts for logs.
   const State& state() const { return x_; }
+  Eigen::Matrix<double, Plant::kStates, 1> state_si() const { return plant_.to_si(x_); }
   State& mutable_state() { return x_; }
   const Plant& plant() const { return plant_; }
   const EnergyLedger<Acc>& energy() const { return ledger_; }
   RomFault fault() const { return fault_; }
   long frames() const { return frames_; }
-  T substep_s() const { return h_; }
+  // Substep in the plant's time unit (seconds except fixed point).
+  T substep() const { return h_; }
 
  private:
   static bool finite(const T& v) {

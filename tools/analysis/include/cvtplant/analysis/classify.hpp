@@ -19,6 +19,10 @@ struct ClassifyOptions {
   int theiler = -1;         // -1: default_theiler
   int m_max = 8;
   int test01_subsample = -1;  // -1: tau
+  // Compute every estimator even when step 1 already decides fixed_point
+  // (the seed-section4 pipeline reports delay, dimension, exponent and RQA
+  // whatever the verdict).
+  bool full_evidence = false;
 };
 
 struct SpectralPeaks {
@@ -38,7 +42,9 @@ struct Classification {
   FnnResult fnn;
   int tau = 0, m = 0, theiler = 0;
   RqaResult rqa;
+  RqaOptions rqa_options;  // as used (RR 2 %, Theiler, lmin = vmin from the embedding)
   LleResult lle;
+  LleOptions lle_options;  // as used (m, tau, Theiler, dt)
   Test01Result t01;
   SpectralPeaks peaks;
   double amplitude_decay = 0;  // std(first quarter)/std(last quarter)

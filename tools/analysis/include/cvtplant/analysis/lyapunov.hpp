@@ -11,6 +11,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -52,6 +53,14 @@ struct SpectrumResult {
   long steps = 0;
   double dt = 0, t_transient = 0, t_warmup = 0, t_end = 0, t_renorm = 0;
   bool is_map = false;
+  // Filled by scenes that know more about their equations (docs/analysis.md#rom-lyapunov):
+  int symmetry_zero_exponents = 0;  // exponents that are 0 by a continuous symmetry, besides the flow's own
+  bool smooth_along_orbit = true;   // false: the orbit met a kink of the vector field (spectrum unreliable)
+  std::vector<std::string> notes;
+  std::map<std::string, double> diagnostics;
+  // Real parts of the eigenvalues of J(x_final), descending: at a (relative)
+  // equilibrium the exponents converge to exactly these (empty if not computed).
+  std::vector<double> jacobian_eigen_real_final;
 };
 
 namespace detail {

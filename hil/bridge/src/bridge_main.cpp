@@ -1,0 +1,266 @@
+// cvtplant-bridge: a built-in scene's plant on a SocketCAN interface
+// (docs/sil.md#bridge). Lock-step by default: it waits for SimCtrl requests.
+// `--mode realtime` paces frames on CLOCK_MONOTONIC with absolute deadlines.
+// On SIGINT/SIGTERM or at the end of --duration-s it prints a JSON summary.
+#include <sched.h>
+#include <sys/mman.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "cvtplant/sil/bridge.hpp"
+#include "cvtplant/sil/latency_stats.hpp"
+#include "posix_clock.hpp"
+#include "stop_flag.hpp"
+#include "socketcan_transport.hpp"
+
+namespace {
+
+const char kUsage[] =
+    "usage: cvtplant-bridge [options]\n"
+    "Runs a built-in scene's plant (double, the scene's integrator and frame)\n"
+    "on a SocketCAN interface, with the messages of hil/cvtplant.dbc.\n"
+    "\n"
+    "  --iface NAME          SocketCAN interface (default vcan0)\n"
+    "  --scene NAME          built-in scene loaded at start (default tip-in);\n"
+    "                        SimCtrl Reset can select another\n"
+    "  --mode MODE           lockstep: wait for SimCtrl Step requests (default)\n"
+    "                        realtime: pace one frame per scene frame from the start\n"
+    "  --duration-s S        stop after S s of simulated time (0 = until a signal)\n"
+    "  --idle-exit-s S       lock-step: exit when no frame arrived for S s (0 = never)\n"
+    "  --log FILE            candump -L style log of every frame the bridge sent\n"
+    "  --log-clock CLOCK     log timestamps: host (CLOCK_MONOTONIC, default) or sim\n"
+    "  --summary FILE        write the JSON summary to FILE (default stdout)\n"
+    "  --sched-fifo PRIO     real time: try SCHED_FIFO at PRIO (1..99) and mlockall\n"
+    "  --ready-file FILE     created once the interface is open\n"
+    "  -h, --help            this text\n"
+    "Exit status: 0 done, 1 run failure (interface, scene), 2 bad command line.\n";
+
+struct Options {
+  std::string iface = "vcan0";
+  std::string scene = "tip-in";
+  bool realtime = false;
+  double duration_s = 0;
+  double idle_exit_s = 0;
+  std::string log, summary, ready_file;
+  bool log_sim_clock = false;
+  int sched_fifo = 0;
+};
+
+[[noreturn]] void bad_usage(const std::string& msg) {
+  std::fprintf(stderr, "cvtplant-bridge: %s (see --help)\n", msg.c_str());
+  std::exit(2);
+}
+
+double parse_seconds(const std::string& flag, const char* v) {
+  char* end = nullptr;
+  errno = 0;
+  const double d = std::strtod(v, &end);
+  if (end == v || *end != '\0' || errno != 0 || !(d >= 0) || d > 1e6)
+    bad_usage(flag + ": expected seconds in [0, 1e6], got '" + v + "'");
+  return d;
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "-h" || a == "--help") {
+      std::fputs(kUsage, stdout);
+      std::exit(0);
+    }
+    static const char* const kValueFlags[] = {"--iface", "--scene", "--mode", "--duration-s", "--idle-exit-s", "--log",
+                                              "--log-clock", "--summary", "--ready-file", "--sched-fifo"};
+    bool known = false;
+    for (const char* k : kValueFlags) known = known || a == k;
+    if (!known) bad_usage(a.rfind("--", 0) == 0 ? "unknown option '" + a + "'" : "unexpected argument '" + a + "'");
+    if (i + 1 >= argc) bad_usage(a + ": missing value");
+    const char* v = argv[++i];
+    if (a == "--iface") o.iface = v;
+    else if (a == "--scene") o.scene = v;
+    else if (a == "--mode") {
+      const std::string m = v;
+      if (m == "realtime") o.realtime = true;
+      else if (m != "lockstep") bad_usage("--mode: expected lockstep or realtime, got '" + m + "'");
+    } else if (a == "--duration-s") o.duration_s = parse_seconds(a, v);
+    else if (a == "--idle-exit-s") o.idle_exit_s = parse_seconds(a, v);
+    else if (a == "--log") o.log = v;
+    else if (a == "--log-clock") {
+      const std::string c = v;
+      if (c == "sim") o.log_sim_clock = true;
+      else if (c != "host") bad_usage("--log-clock: expected host or sim, got '" + c + "'");
+    } else if (a == "--summary") o.summary = v;
+    else if (a == "--ready-file") o.ready_file = v;
+    else if (a == "--sched-fifo") {
+      char* end = nullptr;
+      const long p = std::strtol(v, &end, 10);
+      if (end == v || *end != '\0' || p < 1 || p > 99) bad_usage("--sched-fifo: expected 1..99, got '" + std::string(v) + "'");
+      o.sched_fifo = static_cast<int>(p);
+    }
+  }
+  if (cvt::find_builtin_scene(o.scene.c_str()) == nullptr) bad_usage("--scene: no built-in scene '" + o.scene + "'");
+  return o;
+}
+
+// candump -L format: "(sec.usec) IFACE ID#HEX" (docs/sil.md#log).
+class CandumpLog final : public cvt::sil::FrameSink {
+ public:
+  CandumpLog(std::FILE* f, std::string iface, bool sim_clock) : f_(f), iface_(std::move(iface)), sim_(sim_clock) {}
+  void on_tx(const cvt::can::CanFrame& fr, std::int64_t host_ns, std::int64_t sim_ns) noexcept override {
+    const std::int64_t t_ns = sim_ ? sim_ns : host_ns;
+    std::fprintf(f_, "(%lld.%06lld) %s %03X#", static_cast<long long>(t_ns / 1000000000),
+                 static_cast<long long>((t_ns % 1000000000) / 1000), iface_.c_str(), static_cast<unsigned>(fr.id));
+    for (int i = 0; i < fr.dlc; ++i) std::fprintf(f_, "%02X", fr.data[i]);
+    std::fputc('\n', f_);
+  }
+
+ private:
+  std::FILE* f_;
+  std::string iface_;
+  bool sim_;
+};
+
+struct RtReport {
+  bool ran = false;
+  bool fifo_requested = false, fifo_granted = false, mlocked = false;
+  std::string fifo_error;
+  std::int64_t period_ns = 0;
+  cvt::sil::LatencySummary jitter;
+};
+
+void print_summary(std::FILE* out, const Options& o, const cvt::sil::Bridge& b,
+                   const cvt::port::SocketCanTransport& bus, const RtReport& rt) {
+  const auto& rx = b.rx();
+  const auto& tx = b.tx();
+  const auto tc = bus.counters();
+  const cvt::Scene* s = b.plant().scene();
+  std::fprintf(out, "{\n  \"scene\": \"%s\",\n  \"iface\": \"%s\",\n", s ? s->name : "", o.iface.c_str());
+  std::fprintf(out, "  \"final_mode\": \"%s\",\n  \"plant_fault\": \"%s\",\n", cvt::can::to_string(b.mode()),
+               cvt::rom_fault_name(b.plant().fault()));
+  std::fprintf(out, "  \"frames\": %ld,\n  \"sim_time_s\": %.6f,\n  \"steps_requested\": %llu,\n  \"groups_sent\": %llu,\n",
+               b.plant().frames(), static_cast<double>(b.sim_ns()) * 1e-9,
+               static_cast<unsigned long long>(b.steps_requested()), static_cast<unsigned long long>(b.groups_sent()));
+  auto u = [](std::uint64_t v) { return static_cast<unsigned long long>(v); };
+  std::fprintf(out,
+               "  \"rx\": {\"accepted\": %llu, \"rejected\": %llu, \"not_data_frame\": %llu, \"unknown_id\": %llu, "
+               "\"wrong_dlc\": %llu, \"wrong_crc\": %llu, \"repeated\": %llu, \"wrong_sequence\": %llu, "
+               "\"out_of_range\": %llu, \"invalid_enum\": %llu, \"error_frames\": %llu, \"stale_discarded\": %llu, "
+               "\"plant_ids_ignored\": %llu, \"requests_ignored\": %llu},\n",
+               u(rx.accepted), u(rx.rejected()), u(rx.not_data_frame), u(rx.unknown_id), u(rx.wrong_dlc),
+               u(rx.wrong_crc), u(rx.repeated), u(rx.wrong_sequence), u(rx.out_of_range), u(rx.invalid_enum),
+               u(rx.error_frames), u(rx.stale_discarded), u(rx.plant_ids_ignored), u(rx.requests_ignored));
+  std::fprintf(out,
+               "  \"tx\": {\"sent\": %llu, \"failed\": %llu, \"bus_off_refused\": %llu, \"saturated\": %llu, "
+               "\"enobufs_retries\": %llu, \"dropped\": %llu},\n",
+               u(tx.sent), u(tx.failed), u(tx.bus_off_refused), u(tx.saturated), u(tc.tx_enobufs_retries),
+               u(tc.tx_dropped));
+  std::fprintf(out, "  \"bus\": {\"bus_off_events\": %llu, \"rx_kernel_drops\": %llu, \"rx_invalid\": %llu},\n",
+               u(tc.bus_off_events), u(tc.rx_kernel_drops), u(tc.rx_invalid));
+  std::fprintf(out, "  \"cmd_timeouts\": %llu,\n  \"load_timeouts\": %llu,\n", u(b.cmd_timeouts()),
+               u(b.load_timeouts()));
+  std::fprintf(out, "  \"realtime\": ");
+  if (!rt.ran) {
+    std::fprintf(out, "null\n}\n");
+    return;
+  }
+  std::fprintf(out,
+               "{\"period_ns\": %lld, \"periods\": %zu, \"overruns\": %llu, \"sched_fifo_requested\": %s, "
+               "\"sched_fifo\": %s, \"sched_fifo_error\": \"%s\", \"mlockall\": %s,\n"
+               "    \"jitter_ns\": {\"p50\": %lld, \"p99\": %lld, \"p99_9\": %lld, \"max\": %lld}}\n}\n",
+               static_cast<long long>(rt.period_ns), rt.jitter.n, u(b.rt_overruns()),
+               rt.fifo_requested ? "true" : "false", rt.fifo_granted ? "true" : "false", rt.fifo_error.c_str(),
+               rt.mlocked ? "true" : "false", static_cast<long long>(rt.jitter.p50_ns),
+               static_cast<long long>(rt.jitter.p99_ns), static_cast<long long>(rt.jitter.p999_ns),
+               static_cast<long long>(rt.jitter.max_ns));
+}
+
+void try_realtime_priority(int prio, RtReport& rt) {
+  rt.fifo_requested = true;
+  sched_param sp{};
+  sp.sched_priority = prio;
+  if (sched_setscheduler(0, SCHED_FIFO, &sp) == 0) {
+    rt.fifo_granted = true;
+  } else {
+    rt.fifo_error = std::string("sched_setscheduler: ") + std::strerror(errno);
+  }
+  rt.mlocked = mlockall(MCL_CURRENT | MCL_FUTURE) == 0;
+}
+
+void run_realtime(cvt::sil::Bridge& b, cvt::port::PosixMonotonicClock& clock, const Options& o, RtReport& rt,
+                  std::vector<std::int64_t>& lateness) {
+  rt.ran = true;
+  rt.period_ns = b.frame_ns();
+  const std::int64_t end_ns = static_cast<std::int64_t>(o.duration_s * 1e9 + 0.5);
+  cvt::sil::pace_realtime(b, clock, end_ns, &cvt::hil::g_stop_requested,
+                          [&](std::int64_t ns) { lateness.push_back(ns); });
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options o = parse(argc, argv);
+  cvt::hil::install_stop_handlers();
+
+  cvt::port::SocketCanTransport bus;
+  if (bus.open(o.iface.c_str()) != 0) {
+    std::fprintf(stderr, "cvtplant-bridge: %s: %s\n", o.iface.c_str(), bus.error_text());
+    return 1;
+  }
+  std::FILE* logf = nullptr;
+  if (!o.log.empty() && (logf = std::fopen(o.log.c_str(), "w")) == nullptr) {
+    std::fprintf(stderr, "cvtplant-bridge: --log %s: %s\n", o.log.c_str(), std::strerror(errno));
+    return 1;
+  }
+  CandumpLog log(logf, o.iface, o.log_sim_clock);
+  cvt::port::PosixMonotonicClock clock;
+  static cvt::sil::Bridge bridge(bus, clock, logf != nullptr ? &log : nullptr);
+  if (!bridge.load_scene(*cvt::find_builtin_scene(o.scene.c_str()))) {
+    std::fprintf(stderr, "cvtplant-bridge: scene %s: this bridge has no plant for its features/frame\n",
+                 o.scene.c_str());
+    return 1;
+  }
+  if (!o.ready_file.empty()) {
+    if (std::FILE* r = std::fopen(o.ready_file.c_str(), "w")) std::fclose(r);
+  }
+
+  RtReport rt;
+  std::vector<std::int64_t> lateness;
+  if (o.realtime) {
+    lateness.reserve(static_cast<std::size_t>(o.duration_s * 1e9 / static_cast<double>(bridge.frame_ns())) + 16);
+    bridge.start_realtime();
+  }
+  if (o.sched_fifo > 0) try_realtime_priority(o.sched_fifo, rt);
+  const std::int64_t end_ns = static_cast<std::int64_t>(o.duration_s * 1e9 + 0.5);
+  std::int64_t last_rx_ns = clock.now_ns();
+  std::uint64_t seen = 0;
+  while (!cvt::hil::stop_requested()) {
+    if (bridge.mode() == cvt::can::PlantMode::RealTime) {
+      run_realtime(bridge, clock, o, rt, lateness);
+      if (end_ns != 0 && bridge.sim_ns() >= end_ns) break;
+      continue;
+    }
+    bridge.service(100000000);
+    const std::uint64_t now_seen = bridge.rx().accepted + bridge.rx().rejected() + bridge.rx().error_frames;
+    if (now_seen != seen) {
+      seen = now_seen;
+      last_rx_ns = clock.now_ns();
+    } else if (o.idle_exit_s > 0 && clock.now_ns() - last_rx_ns > static_cast<std::int64_t>(o.idle_exit_s * 1e9)) {
+      break;
+    }
+    if (end_ns != 0 && bridge.sim_ns() >= end_ns) break;
+  }
+  if (rt.ran) rt.jitter = cvt::sil::summarize_latencies(lateness);
+  if (logf != nullptr) std::fclose(logf);
+  std::FILE* out = stdout;
+  if (!o.summary.empty() && (out = std::fopen(o.summary.c_str(), "w")) == nullptr) {
+    std::fprintf(stderr, "cvtplant-bridge: --summary %s: %s\n", o.summary.c_str(), std::strerror(errno));
+    return 1;
+  }
+  print_summary(out, o, bridge, bus, rt);
+  if (out != stdout) std::fclose(out);
+  return 0;
+}

@@ -1,0 +1,134 @@
+// The example controller's CAN application (docs/sil.md#controller), written
+// the way an ECU project uses cvtplant: only the core codec (cvt::can) and the
+// port layer's transport interface. Heap-free, no exceptions.
+//
+// It collects the plant's output groups (PlantSpeeds, PlantRatio,
+// PlantForces with one sample_tag), runs ClampLaw once per control period and
+// sends CtrlCmd. A period whose group is incomplete, mixed (different tags)
+// or E2E-rejected runs the law with plant_data_valid = false.
+#pragma once
+
+#include <cstdint>
+
+#include "cvtctl/clamp_law.hpp"
+#include "cvtplant/can/messages.hpp"
+#include "cvtplant/port/can_transport.hpp"
+
+namespace cvtctl {
+
+struct ControllerCounters {
+  std::uint32_t accepted = 0;
+  std::uint32_t rejected = 0;        // any receive-pipeline rejection
+  std::uint32_t error_frames = 0;
+  std::uint32_t invalid_periods = 0; // control periods without a complete group
+  std::uint32_t tx_failed = 0;
+};
+
+class ControllerNode {
+ public:
+  ControllerNode(cvt::port::CanTransport& bus, const ClampLawParams& p = {}) : bus_(bus), law_(p) {}
+
+  // Start of a new run (the plant was reset): forget everything received.
+  void restart() {
+    rx_.reset_all();
+    law_.reset();
+    have_speeds_ = have_ratio_ = have_forces_ = have_status_ = false;
+  }
+
+  // Handles every queued frame, waiting up to wait_ns for the first.
+  // Returns true once a PlantStatus arrived since the last control_step().
+  bool poll(std::int64_t wait_ns) {
+    cvt::can::CanFrame f;
+    cvt::port::CanIoStatus st = bus_.receive(f, wait_ns);
+    while (st != cvt::port::CanIoStatus::Timeout) {
+      handle(st, f);
+      st = bus_.receive(f, 0);
+    }
+    return have_status_;
+  }
+
+  // One control period: law on the latest group, then CtrlCmd.
+  cvt::port::CanIoStatus control_step(float torque_demand_Nm) {
+    ClampLawInputs in;
+    in.torque_demand_Nm = torque_demand_Nm;
+    in.plant_data_valid = group_complete();
+    if (in.plant_data_valid) {
+      in.torque_transmitted_Nm = speeds_.torque_transmitted_Nm;
+      in.slip = ratio_.slip;
+    } else {
+      ++counters_.invalid_periods;
+    }
+    last_out_ = law_.step(in);
+    have_speeds_ = have_ratio_ = have_forces_ = have_status_ = false;
+    cvt::can::CtrlCmd cmd;
+    cmd.clamp_force_cmd_N = last_out_.clamp_force_cmd_N;
+    cmd.driver_torque_req_Nm = clamp_f(last_out_.driver_torque_req_Nm, -600.0f, 600.0f);
+    cvt::can::CanFrame f;
+    if (tx_.encode(cmd, f) != cvt::can::CodecStatus::Ok) {
+      ++counters_.tx_failed;
+      return cvt::port::CanIoStatus::InvalidFrame;
+    }
+    const cvt::port::CanIoStatus st = bus_.send(f);
+    if (st != cvt::port::CanIoStatus::Ok) ++counters_.tx_failed;
+    return st;
+  }
+
+  bool group_complete() const {
+    return have_speeds_ && have_ratio_ && have_forces_ && speeds_.sample_tag == ratio_.sample_tag &&
+           speeds_.sample_tag == forces_.sample_tag;
+  }
+  const cvt::can::PlantSpeeds& speeds() const { return speeds_; }
+  const cvt::can::PlantRatio& ratio() const { return ratio_; }
+  const cvt::can::PlantForces& forces() const { return forces_; }
+  const cvt::can::PlantStatus& status() const { return status_; }
+  const ClampLawOutputs& last_output() const { return last_out_; }
+  const ClampLaw& law() const { return law_; }
+  const ControllerCounters& counters() const { return counters_; }
+
+ private:
+  void handle(cvt::port::CanIoStatus st, const cvt::can::CanFrame& f) {
+    if (st == cvt::port::CanIoStatus::ErrorFrame) {
+      ++counters_.error_frames;
+      return;
+    }
+    if (st != cvt::port::CanIoStatus::Ok) return;
+    // Only the plant's outputs are inputs of this ECU; its own CtrlCmd and
+    // the harness's frames are not checked here.
+    switch (f.id) {
+      case cvt::can::PlantSpeeds::kId:
+      case cvt::can::PlantRatio::kId:
+      case cvt::can::PlantForces::kId:
+      case cvt::can::PlantStatus::kId:
+      case cvt::can::PlantDiag::kId: break;
+      default: return;
+    }
+    const cvt::can::RxResult r = rx_.receive(f, any_);
+    if (!r.accepted()) {
+      ++counters_.rejected;
+      return;
+    }
+    ++counters_.accepted;
+    switch (any_.which) {
+      case cvt::can::MessageId::PlantSpeeds: speeds_ = any_.plant_speeds; have_speeds_ = true; break;
+      case cvt::can::MessageId::PlantRatio: ratio_ = any_.plant_ratio; have_ratio_ = true; break;
+      case cvt::can::MessageId::PlantForces: forces_ = any_.plant_forces; have_forces_ = true; break;
+      case cvt::can::MessageId::PlantStatus: status_ = any_.plant_status; have_status_ = true; break;
+      default: break;
+    }
+  }
+
+  cvt::port::CanTransport& bus_;
+  ClampLaw law_;
+  cvt::can::RxBank rx_;
+  cvt::can::AnyMessage any_;
+  cvt::can::TxChannel<cvt::can::CtrlCmd> tx_;
+  cvt::can::PlantSpeeds speeds_{};
+  cvt::can::PlantRatio ratio_{};
+  cvt::can::PlantForces forces_{};
+  cvt::can::PlantStatus status_{};
+  bool have_speeds_ = false, have_ratio_ = false, have_forces_ = false, have_status_ = false;
+  ClampLawOutputs last_out_{};
+  ControllerCounters counters_{};
+};
+
+}  // namespace cvtctl

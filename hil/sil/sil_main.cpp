@@ -1,0 +1,509 @@
+// cvtplant-sil: the SIL harness (docs/sil.md#scenarios). It plays two nodes
+// on the bus, each with its own socket: the Harness (SimCtrl lock-step
+// requests, HarnessLoad) and the example Controller (hil/controller). For
+// each scenario it resets the bridge, runs the closed loop in 10 ms
+// lock-step periods, checks the pass/fail criteria and writes a CSV trace;
+// all results go to one JUnit XML file. `bench` measures lock-step round
+// trips per second.
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "cvtctl/controller_node.hpp"
+#include "cvtplant/can/messages.hpp"
+#include "cvtplant/port/loopback_transport.hpp"
+#include "cvtplant/sil/bridge.hpp"
+#include "cvtplant/sil/latency_stats.hpp"
+#include "posix_clock.hpp"
+#include "socketcan_transport.hpp"
+
+namespace {
+
+using cvt::can::CanFrame;
+using cvt::port::CanIoStatus;
+
+constexpr int kFramesPerPeriod = 10;  // 10 ms control period = CtrlCmd cycle, 1 ms plant frames
+constexpr double kPeriod_s = 0.01;
+// A hang guard, not a criterion: the starved TCG micro-VM has shown single
+// round trips of 1.6 s (docs/sil.md#figures).
+constexpr std::int64_t kReplyTimeout_ns = 10000000000;
+
+const char kUsage[] =
+    "usage: cvtplant-sil run   [--iface NAME|--loopback] [--scenario NAME|all] [--out DIR] [--junit FILE] [--safety X]\n"
+    "       cvtplant-sil bench [--iface NAME] [--steps N] [--with-controller]\n"
+    "Drives cvtplant-bridge (lock-step) with the example controller over SocketCAN.\n"
+    "  --iface NAME        interface (default vcan0)\n"
+    "  --loopback          no SocketCAN: the bridge runs in-process on the loopback bus\n"
+    "  --scenario NAME     tip-in, load-step, clamp-loss or all (default all)\n"
+    "  --out DIR           per-scenario CSV traces (default .)\n"
+    "  --junit FILE        JUnit XML report of every criterion\n"
+    "  --safety X          override the controller's safety factor (default 1.3)\n"
+    "  --steps N           bench: lock-step round trips (default 5000)\n"
+    "  --with-controller   bench: a CtrlCmd from the controller before each Step\n"
+    "Exit status: 0 all criteria passed, 1 a criterion failed or the bridge did not answer, 2 bad command line.\n";
+
+[[noreturn]] void bad_usage(const std::string& msg) {
+  std::fprintf(stderr, "cvtplant-sil: %s (see --help)\n", msg.c_str());
+  std::exit(2);
+}
+
+// ---- Harness node ----------------------------------------------------------
+
+class Harness {
+ public:
+  // on_idle runs whenever the bus has nothing for the harness: with the
+  // bridge in-process on the loopback bus (--loopback) it services the bridge.
+  explicit Harness(cvt::port::CanTransport& bus, std::function<void()> on_idle = {})
+      : bus_(bus), on_idle_(std::move(on_idle)) {}
+
+  bool request(cvt::can::SimRequest r, std::uint16_t steps, cvt::can::SceneId scene) {
+    cvt::can::SimCtrl m;
+    m.sim_request = r;
+    m.step_count = steps;
+    m.scene_id = scene;
+    m.step_seq = seq_;
+    CanFrame f;
+    if (sim_.encode(m, f) != cvt::can::CodecStatus::Ok || bus_.send(f) != CanIoStatus::Ok) return false;
+    return wait_status(seq_);
+  }
+
+  // The bridge may still hold another harness's last SimCtrl counter, which
+  // ours could repeat (rejected as REPEATED, docs/can.md#e2e-checker): a
+  // None request that is answered proves the next counter is accepted.
+  bool sync() {
+    for (int i = 0; i < 5; ++i) {
+      cvt::can::SimCtrl m;
+      m.step_seq = seq_;
+      CanFrame f;
+      if (sim_.encode(m, f) != cvt::can::CodecStatus::Ok || bus_.send(f) != CanIoStatus::Ok) return false;
+      if (wait_status(seq_, 1000000000)) return true;
+    }
+    return false;
+  }
+
+  bool send_load(bool active, float torque_Nm) {
+    cvt::can::HarnessLoad m;
+    m.load_override_active = active;
+    m.load_torque_override_Nm = torque_Nm;
+    CanFrame f;
+    return load_.encode(m, f) == cvt::can::CodecStatus::Ok && bus_.send(f) == CanIoStatus::Ok;
+  }
+
+  const cvt::can::PlantStatus& status() const { return status_; }
+  const cvt::can::PlantForces& forces() const { return forces_; }
+  const cvt::can::PlantSpeeds& speeds() const { return speeds_; }
+  const cvt::can::PlantRatio& ratio() const { return ratio_; }
+  const cvt::can::PlantDiag& diag() const { return diag_; }
+  std::uint32_t rejected() const { return rejected_; }
+  std::uint32_t mixed_groups() const { return mixed_groups_; }
+
+ private:
+  // Reads the bus until the PlantStatus acknowledging `seq` (the end of the
+  // group), checking every plant frame through the E2E receive pipeline.
+  bool wait_status(std::uint8_t seq, std::int64_t timeout_ns = kReplyTimeout_ns) {
+    seq_ = static_cast<std::uint8_t>((seq_ + 1) & 0x0F);
+    cvt::port::PosixMonotonicClock clock;
+    const std::int64_t end = clock.now_ns() + timeout_ns;
+    for (;;) {
+      const std::int64_t left = end - clock.now_ns();
+      if (left <= 0) return false;
+      CanFrame f;
+      const CanIoStatus st = bus_.receive(f, on_idle_ ? 0 : left);
+      if (st == CanIoStatus::Timeout && on_idle_) on_idle_();
+      if (st != CanIoStatus::Ok) continue;
+      if (f.id < cvt::can::PlantSpeeds::kId) continue;  // SimCtrl/CtrlCmd/HarnessLoad from other nodes
+      cvt::can::AnyMessage a;
+      if (!rx_.receive(f, a).accepted()) {
+        ++rejected_;
+        continue;
+      }
+      switch (a.which) {
+        case cvt::can::MessageId::PlantSpeeds: speeds_ = a.plant_speeds; break;
+        case cvt::can::MessageId::PlantRatio: ratio_ = a.plant_ratio; break;
+        case cvt::can::MessageId::PlantForces: forces_ = a.plant_forces; break;
+        case cvt::can::MessageId::PlantDiag: diag_ = a.plant_diag; break;
+        case cvt::can::MessageId::PlantStatus:
+          status_ = a.plant_status;
+          if (status_.step_seq_ack != seq) continue;
+          if (speeds_.sample_tag != status_.sample_tag || ratio_.sample_tag != status_.sample_tag ||
+              forces_.sample_tag != status_.sample_tag)
+            ++mixed_groups_;
+          return true;
+        default: break;
+      }
+    }
+  }
+
+  cvt::port::CanTransport& bus_;
+  std::function<void()> on_idle_;
+  cvt::can::TxChannel<cvt::can::SimCtrl> sim_;
+  cvt::can::TxChannel<cvt::can::HarnessLoad> load_;
+  cvt::can::RxBank rx_;
+  std::uint8_t seq_ = 0;
+  cvt::can::PlantStatus status_{};
+  cvt::can::PlantSpeeds speeds_{};
+  cvt::can::PlantRatio ratio_{};
+  cvt::can::PlantForces forces_{};
+  cvt::can::PlantDiag diag_{};
+  std::uint32_t rejected_ = 0, mixed_groups_ = 0;
+};
+
+// ---- Scenarios -------------------------------------------------------------
+
+struct Scenario {
+  const char* name;
+  const char* what;
+  double t_end_s;
+  std::function<float(double)> demand_Nm;
+  bool load_override = false;
+  std::function<float(double)> load_Nm = [](double) { return 0.0f; };
+  double link_loss_start_s = -1, link_loss_end_s = -1;  // controller silent in [start, end)
+};
+
+float ramp(double t, double t0, double t1, float a, float b) {
+  if (t <= t0) return a;
+  if (t >= t1) return b;
+  return a + (b - a) * static_cast<float>((t - t0) / (t1 - t0));
+}
+
+std::vector<Scenario> scenarios() {
+  std::vector<Scenario> v;
+  v.push_back({"tip-in", "driver demand 20 -> 120 N m over 0.2 s at 1 s", 3.0,
+               [](double t) { return ramp(t, 1.0, 1.2, 20.0f, 120.0f); }});
+  Scenario ls{"load-step", "80 N m demand; harness load override 0 -> 100 N m at 1 s", 3.0,
+              [](double) { return 80.0f; }};
+  ls.load_override = true;
+  ls.load_Nm = [](double t) { return t < 1.0 ? 0.0f : 100.0f; };
+  v.push_back(ls);
+  Scenario cl{"clamp-loss", "100 N m; the controller's CtrlCmd is lost for 200 ms at 1 s", 2.5,
+              [](double) { return 100.0f; }};
+  cl.link_loss_start_s = 1.0;
+  cl.link_loss_end_s = 1.2;
+  v.push_back(cl);
+  return v;
+}
+
+struct Check {
+  std::string name;
+  bool pass;
+  std::string detail;
+};
+
+struct Sample {
+  double t_s;
+  float demand_Nm, clamp_cmd_N, axial_N, torque_Nm, slip, omega1, omega2, safety;
+  bool cmd_timeout, watchdog;
+};
+
+struct ScenarioResult {
+  std::string name;
+  double wall_s = 0;
+  std::vector<Check> checks;
+  bool pass() const {
+    for (const Check& c : checks)
+      if (!c.pass) return false;
+    return true;
+  }
+};
+
+std::string fmt(const char* f, double a, double b = 0) {
+  char buf[200];
+  std::snprintf(buf, sizeof buf, f, a, b);
+  return buf;
+}
+
+ScenarioResult run_scenario(const Scenario& sc, Harness& h, cvtctl::ControllerNode& ctl,
+                            const cvtctl::ClampLawParams& law, const std::string& out_dir) {
+  cvt::port::PosixMonotonicClock clock;
+  const std::int64_t t0 = clock.now_ns();
+  ScenarioResult res;
+  res.name = sc.name;
+  std::vector<Sample> trace;
+  std::uint32_t no_reply = 0, bad_time = 0, bad_mode = 0;
+  if (!h.request(cvt::can::SimRequest::Reset, 0, cvt::can::SceneId::TipIn)) ++no_reply;
+  ctl.poll(100000000);
+  ctl.restart();
+  const int periods = static_cast<int>(sc.t_end_s / kPeriod_s + 0.5);
+  std::uint32_t expect_us = 0;
+  for (int k = 0; k < periods && no_reply == 0; ++k) {
+    const double t = k * kPeriod_s;
+    const bool silent = t >= sc.link_loss_start_s && t < sc.link_loss_end_s;
+    if (!silent) ctl.control_step(sc.demand_Nm(t));
+    if (sc.load_override) h.send_load(true, sc.load_Nm(t));
+    if (!h.request(cvt::can::SimRequest::Step, kFramesPerPeriod, cvt::can::SceneId::Keep)) {
+      ++no_reply;
+      break;
+    }
+    // The controller's socket got the same group; wait for its PlantStatus.
+    for (int i = 0; i < 1000 && !ctl.poll(10000000); ++i) {
+    }
+    expect_us += kFramesPerPeriod * 1000;
+    const cvt::can::PlantStatus& st = h.status();
+    if (st.sim_time_us != expect_us) ++bad_time;
+    if (st.plant_mode != cvt::can::PlantMode::LockStep) ++bad_mode;
+    Sample s;
+    s.t_s = st.sim_time_us * 1e-6;
+    s.demand_Nm = sc.demand_Nm(t);
+    s.clamp_cmd_N = ctl.last_output().clamp_force_cmd_N;
+    s.axial_N = h.forces().driver_axial_force_N;
+    s.torque_Nm = h.speeds().torque_transmitted_Nm;
+    s.slip = h.ratio().slip;
+    s.omega1 = h.speeds().omega_driver_rad_s;
+    s.omega2 = h.speeds().omega_driven_rad_s;
+    const float tau = std::fabs(s.torque_Nm) < 1.0f ? 1.0f : std::fabs(s.torque_Nm);
+    s.safety = cvtctl::torque_capacity_Nm(law, s.axial_N) / tau;
+    s.cmd_timeout = st.fault_cmd_timeout;
+    s.watchdog = st.fault_watchdog;
+    trace.push_back(s);
+  }
+  res.wall_s = static_cast<double>(clock.now_ns() - t0) * 1e-9;
+
+  const std::string csv = out_dir + "/sil-" + sc.name + ".csv";
+  bool trace_written = false;
+  if (std::FILE* f = std::fopen(csv.c_str(), "w")) {
+    trace_written = true;
+    std::fprintf(f, "t_s,demand_Nm,clamp_cmd_N,axial_force_N,torque_transmitted_Nm,slip,omega1_rad_s,omega2_rad_s,"
+                    "safety_factor,fault_cmd_timeout,fault_watchdog\n");
+    for (const Sample& s : trace)
+      std::fprintf(f, "%.3f,%.2f,%.0f,%.0f,%.2f,%.4f,%.2f,%.2f,%.3f,%d,%d\n", s.t_s, s.demand_Nm, s.clamp_cmd_N,
+                   s.axial_N, s.torque_Nm, s.slip, s.omega1, s.omega2, s.safety, s.cmd_timeout, s.watchdog);
+    std::fclose(f);
+  } else {
+    std::fprintf(stderr, "cvtplant-sil: %s: %s\n", csv.c_str(), std::strerror(errno));
+  }
+
+  auto& c = res.checks;
+  c.push_back({"trace_written", trace_written, csv});
+  c.push_back({"bridge_answered_every_step", no_reply == 0 && trace.size() == static_cast<size_t>(periods),
+               fmt("%.0f of %.0f periods answered", static_cast<double>(trace.size()), periods)});
+  c.push_back({"lockstep_time_exact", bad_time == 0 && bad_mode == 0,
+               fmt("%.0f groups with sim_time_us != 10000 k, %.0f not in LockStep", bad_time, bad_mode)});
+  c.push_back({"frames_valid", h.rejected() == 0 && h.mixed_groups() == 0 && ctl.counters().rejected == 0,
+               fmt("harness rejected %.0f, mixed groups %.0f", h.rejected(), h.mixed_groups()) +
+                   fmt(", controller rejected %.0f", ctl.counters().rejected)});
+  // Criteria (docs/sil.md#criteria), after the first 50 ms start-up.
+  double max_slip = 0, min_sf = 1e9, min_sf_t = 0;
+  bool watchdog = false;
+  for (const Sample& s : trace) {
+    watchdog = watchdog || s.watchdog;
+    if (s.t_s < 0.05) continue;
+    max_slip = std::fmax(max_slip, std::fabs(s.slip));
+    if (s.safety < min_sf) {
+      min_sf = s.safety;
+      min_sf_t = s.t_s;
+    }
+  }
+  c.push_back({"slip_bounded", max_slip <= 0.10, fmt("max |slip| %.4f (limit 0.10)", max_slip)});
+  c.push_back({"no_gross_slip", min_sf >= 1.05,
+               fmt("min torque-capacity safety factor %.3f at t = %.2f s (limit 1.05)", min_sf, min_sf_t)});
+  c.push_back({"no_watchdog_fault", !watchdog, watchdog ? "plant watchdog fault" : "none"});
+  if (sc.link_loss_start_s >= 0) {
+    // Last command at start - 10 ms; deadline 50 ms later, seen by the
+    // status closing that period (docs/can.md#timeouts).
+    double first_flag = -1, cleared = -1, axial_at_100ms = 0;
+    for (const Sample& s : trace) {
+      if (s.cmd_timeout && first_flag < 0) first_flag = s.t_s;
+      if (first_flag >= 0 && cleared < 0 && !s.cmd_timeout && s.t_s > sc.link_loss_end_s) cleared = s.t_s;
+      if (first_flag >= 0 && s.t_s <= first_flag + 0.1 + 1e-9) axial_at_100ms = s.axial_N;
+    }
+    const double expect = sc.link_loss_start_s - kPeriod_s + 0.05;
+    c.push_back({"timeout_flag_on_clamp_loss", first_flag >= expect - 1e-9 && first_flag <= expect + kPeriod_s + 1e-9,
+                 fmt("fault_cmd_timeout first at %.3f s (expected within 10 ms after %.3f s)", first_flag, expect)});
+    c.push_back({"substitute_clamp_applied", axial_at_100ms >= 15000.0,
+                 fmt("axial force %.0f N 100 ms after the timeout (substitute 20000 N)", axial_at_100ms)});
+    c.push_back({"flag_clears_on_recovery", cleared > 0 && cleared <= sc.link_loss_end_s + 0.02 + 1e-9,
+                 fmt("cleared at %.3f s (controller resumed at %.3f s)", cleared, sc.link_loss_end_s)});
+    c.push_back({"timeout_counted_once", h.diag().cmd_timeouts == 1,
+                 fmt("PlantDiag.cmd_timeouts = %.0f", h.diag().cmd_timeouts)});
+  } else {
+    bool any_timeout = false;
+    for (const Sample& s : trace) any_timeout = any_timeout || s.cmd_timeout;
+    c.push_back({"no_cmd_timeout", !any_timeout, any_timeout ? "fault_cmd_timeout raised" : "none"});
+  }
+  return res;
+}
+
+std::string xml_escape(const std::string& s) {
+  std::string o;
+  for (char ch : s) {
+    if (ch == '<') o += "&lt;";
+    else if (ch == '>') o += "&gt;";
+    else if (ch == '&') o += "&amp;";
+    else if (ch == '"') o += "&quot;";
+    else o += ch;
+  }
+  return o;
+}
+
+bool write_junit(const std::string& path, const std::vector<ScenarioResult>& results) {
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (f == nullptr) return false;
+  int tests = 0, failures = 0;
+  double wall = 0;
+  for (const auto& r : results) {
+    wall += r.wall_s;
+    for (const auto& c : r.checks) {
+      ++tests;
+      failures += c.pass ? 0 : 1;
+    }
+  }
+  std::fprintf(f, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
+  std::fprintf(f, "<testsuites name=\"cvtplant-sil\" tests=\"%d\" failures=\"%d\" time=\"%.3f\">\n", tests, failures,
+               wall);
+  for (const auto& r : results) {
+    int fails = 0;
+    for (const auto& c : r.checks) fails += c.pass ? 0 : 1;
+    std::fprintf(f, "  <testsuite name=\"sil.%s\" tests=\"%zu\" failures=\"%d\" time=\"%.3f\">\n", r.name.c_str(),
+                 r.checks.size(), fails, r.wall_s);
+    for (const auto& c : r.checks) {
+      std::fprintf(f, "    <testcase classname=\"sil.%s\" name=\"%s\" time=\"0\">\n", r.name.c_str(), c.name.c_str());
+      if (!c.pass) std::fprintf(f, "      <failure message=\"%s\"/>\n", xml_escape(c.detail).c_str());
+      std::fprintf(f, "      <system-out>%s</system-out>\n    </testcase>\n", xml_escape(c.detail).c_str());
+    }
+    std::fprintf(f, "  </testsuite>\n");
+  }
+  std::fprintf(f, "</testsuites>\n");
+  std::fclose(f);
+  return true;
+}
+
+// ---- bench -----------------------------------------------------------------
+
+int bench(Harness& h, cvtctl::ControllerNode& ctl, long steps, bool with_controller) {
+  if (!h.request(cvt::can::SimRequest::Reset, 0, cvt::can::SceneId::TipIn)) {
+    std::fprintf(stderr, "cvtplant-sil: bridge did not answer the Reset\n");
+    return 1;
+  }
+  ctl.restart();
+  cvt::port::PosixMonotonicClock clock;
+  std::vector<std::int64_t> rtt;
+  rtt.reserve(static_cast<size_t>(steps));
+  const std::int64_t t0 = clock.now_ns();
+  for (long i = 0; i < steps; ++i) {
+    const std::int64_t a = clock.now_ns();
+    if (with_controller) {
+      ctl.poll(0);
+      ctl.control_step(50.0f);
+    }
+    if (!h.request(cvt::can::SimRequest::Step, 1, cvt::can::SceneId::Keep)) {
+      std::fprintf(stderr, "cvtplant-sil: no answer to step %ld\n", i);
+      return 1;
+    }
+    rtt.push_back(clock.now_ns() - a);
+  }
+  const double secs = static_cast<double>(clock.now_ns() - t0) * 1e-9;
+  const cvt::sil::LatencySummary s = cvt::sil::summarize_latencies(rtt);
+  std::printf(
+      "{\"round_trips\": %ld, \"with_controller\": %s, \"seconds\": %.3f, \"round_trips_per_s\": %.0f, "
+      "\"rtt_us\": {\"p50\": %.1f, \"p99\": %.1f, \"p99_9\": %.1f, \"max\": %.1f}, \"sim_time_us\": %u}\n",
+      steps, with_controller ? "true" : "false", secs, static_cast<double>(steps) / secs, s.p50_ns * 1e-3,
+      s.p99_ns * 1e-3, s.p999_ns * 1e-3, s.max_ns * 1e-3, h.status().sim_time_us);
+  return h.status().sim_time_us == static_cast<std::uint32_t>(steps * 1000) ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) bad_usage("missing subcommand run or bench");
+  const std::string cmd = argv[1];
+  if (cmd == "-h" || cmd == "--help") {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
+  if (cmd != "run" && cmd != "bench") bad_usage("unknown subcommand '" + cmd + "'");
+  std::string iface = "vcan0", scenario = "all", out_dir = ".", junit;
+  long steps = 5000;
+  bool with_controller = false, loopback = false;
+  cvtctl::ClampLawParams law;
+  for (int i = 2; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "-h" || a == "--help") {
+      std::fputs(kUsage, stdout);
+      return 0;
+    }
+    if (a == "--with-controller" || a == "--loopback") {
+      (a == "--loopback" ? loopback : with_controller) = true;
+      continue;
+    }
+    if (a != "--iface" && a != "--scenario" && a != "--out" && a != "--junit" && a != "--safety" && a != "--steps")
+      bad_usage("unknown option '" + a + "'");
+    if (i + 1 >= argc) bad_usage(a + ": missing value");
+    const std::string v = argv[++i];
+    char* end = nullptr;
+    if (a == "--iface") iface = v;
+    else if (a == "--scenario") scenario = v;
+    else if (a == "--out") out_dir = v;
+    else if (a == "--junit") junit = v;
+    else if (a == "--safety") {
+      law.safety = std::strtof(v.c_str(), &end);
+      if (end == v.c_str() || *end != '\0' || !(law.safety > 0.1f && law.safety < 10.0f))
+        bad_usage("--safety: expected a number in (0.1, 10), got '" + v + "'");
+    } else if (a == "--steps") {
+      steps = std::strtol(v.c_str(), &end, 10);
+      if (end == v.c_str() || *end != '\0' || steps < 1 || steps > 10000000)
+        bad_usage("--steps: expected 1..10000000, got '" + v + "'");
+    }
+  }
+  std::vector<Scenario> chosen;
+  for (const Scenario& s : scenarios())
+    if (scenario == "all" || scenario == s.name) chosen.push_back(s);
+  if (chosen.empty()) bad_usage("--scenario: expected tip-in, load-step, clamp-loss or all, got '" + scenario + "'");
+  // Traces are part of the result: a directory that cannot be made is an
+  // error now, not a silently missing CSV later.
+  std::error_code mkdir_error;
+  std::filesystem::create_directories(out_dir, mkdir_error);
+  if (mkdir_error) {
+    std::fprintf(stderr, "cvtplant-sil: --out %s: %s\n", out_dir.c_str(), mkdir_error.message().c_str());
+    return 1;
+  }
+
+  // Three nodes on one bus: bridge (node 0, in-process only with
+  // --loopback), harness and controller, each with its own transport.
+  cvt::port::VirtualClock vclock;
+  static cvt::port::LoopbackBus<3, 256> loop_bus(&vclock);
+  static cvt::sil::Bridge loop_bridge(loop_bus.node(0), vclock);
+  cvt::port::SocketCanTransport harness_sock, controller_sock;
+  cvt::port::CanTransport* harness_bus = &loop_bus.node(1);
+  cvt::port::CanTransport* controller_bus = &loop_bus.node(2);
+  std::function<void()> pump;
+  if (loopback) {
+    loop_bridge.load_scene(*cvt::find_builtin_scene("tip-in"));
+    pump = [] { loop_bridge.service(0); };
+  } else {
+    if (harness_sock.open(iface.c_str()) != 0 || controller_sock.open(iface.c_str()) != 0) {
+      std::fprintf(stderr, "cvtplant-sil: %s: %s%s\n", iface.c_str(), harness_sock.error_text(),
+                   controller_sock.error_text());
+      return 1;
+    }
+    harness_bus = &harness_sock;
+    controller_bus = &controller_sock;
+  }
+  Harness h(*harness_bus, pump);
+  cvtctl::ControllerNode ctl(*controller_bus, law);
+  if (!h.sync()) {
+    std::fprintf(stderr, "cvtplant-sil: the bridge on %s does not answer SimCtrl\n", loopback ? "loopback" : iface.c_str());
+    return 1;
+  }
+  if (cmd == "bench") return bench(h, ctl, steps, with_controller);
+
+  std::vector<ScenarioResult> results;
+  bool all_pass = true;
+  for (const Scenario& s : chosen) {
+    results.push_back(run_scenario(s, h, ctl, law, out_dir));
+    const ScenarioResult& r = results.back();
+    all_pass = all_pass && r.pass();
+    std::printf("%s %s (%.1f s wall): %s\n", r.pass() ? "PASS" : "FAIL", r.name.c_str(), r.wall_s, s.what);
+    for (const Check& c : r.checks) std::printf("  %s %s: %s\n", c.pass ? "ok  " : "FAIL", c.name.c_str(), c.detail.c_str());
+  }
+  if (!junit.empty() && !write_junit(junit, results)) {
+    std::fprintf(stderr, "cvtplant-sil: --junit %s: %s\n", junit.c_str(), std::strerror(errno));
+    return 1;
+  }
+  return all_pass ? 0 : 1;
+}

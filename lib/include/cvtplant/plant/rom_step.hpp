@@ -1,0 +1,179 @@
+#pragma once
+// The linearly implicit methods (ROS2, linearly implicit Euler) for the
+// reduced-order plant with the solve of W = I - a J done by block
+// elimination instead of a dense LU (docs/rom.md#structured-solve). Same
+// method, same W, same stages as integrate/rosenbrock.hpp; only the order of
+// the arithmetic of the linear solve differs, so results agree to rounding.
+// A dense 9x9 LU is most of a frame on a Cortex-M4F; the elimination leaves
+// a 4x4 LU (the two pulley speeds and the two lump velocities), written out.
+//
+// Structure used (docs/rom.md#structured-solve), for a = gamma h:
+//   kinematic rows p (x1, x2, psi): J(p, .) has one entry, J(p, c(p)), with
+//     c(x_i) = xd_i and c(psi) = w1, so k_p = f_p + a J(p, c(p)) k_c(p);
+//   axial rows (F_h, delta, deltadot): depend on the axial states only (no
+//     wedging), a 3x3 block solved first by two scalar divisions;
+//   the core rows (w1, w2, xd1, xd2) then form a dense 4x4 system.
+#include <cstdint>
+
+#include "cvtplant/integrate/method.hpp"
+#include "cvtplant/plant/cvt_rom.hpp"
+
+namespace cvt {
+
+template <class T, std::uint32_t F>
+class RomWSolver {
+  using Plant = CvtRom<T, F>;
+  using L = RomLayout<F>;
+  using Vec = typename Plant::State;
+  static constexpr int kCore[4] = {L::kW1, L::kW2, L::kV1, L::kV2};
+  static constexpr int kNumKin = L::kPolygon ? 3 : 2;
+  static constexpr int kKin[3] = {L::kX1, L::kX2, L::kPsi};
+  // Core column (index into kCore) each kinematic state integrates.
+  static constexpr int kKinCore[3] = {2, 3, 0};
+
+ public:
+  // W = I - a J for the Jacobian J at the step's start.
+  void factor(const typename Plant::Jacobian& J, const T& a) {
+    for (int p = 0; p < kNumKin; ++p) kin_[p] = a * J(kKin[p], kCore[kKinCore[p]]);
+    for (int r = 0; r < 4; ++r) {
+      for (int c = 0; c < 4; ++c) lu_[r][c] = (r == c ? T(1) : T(0)) - a * J(kCore[r], kCore[c]);
+      // Substituting k_p = f_p + kin_p k_c(p) into the core rows.
+      for (int p = 0; p < kNumKin; ++p) {
+        wcp_[r][p] = -a * J(kCore[r], kKin[p]);
+        lu_[r][kKinCore[p]] += wcp_[r][p] * kin_[p];
+      }
+      if constexpr (L::kAxial) wca_[r] = -a * J(kCore[r], L::kDelta);  // F_ax = K_ax delta
+    }
+    factor_lu4();
+    if constexpr (L::kAxial) {
+      // W_AA = [[w_hh 0 0] [0 1 -a J_d,dd] [w_dh w_dd w_dd,dd]]
+      w_hh_ = T(1) - a * J(L::kFh, L::kFh);
+      w_d_dd_ = -a * J(L::kDelta, L::kDeltaDot);
+      w_dh_ = -a * J(L::kDeltaDot, L::kFh);
+      w_dd_ = -a * J(L::kDeltaDot, L::kDelta);
+      w_dd_piv_ = (T(1) - a * J(L::kDeltaDot, L::kDeltaDot)) - w_dd_ * w_d_dd_;
+    }
+  }
+
+  // k = W^-1 f.
+  Vec solve(const Vec& f) const {
+    Vec k;
+    T k_delta(0);
+    if constexpr (L::kAxial) {
+      k(L::kFh) = f(L::kFh) / w_hh_;
+      k(L::kDeltaDot) = (f(L::kDeltaDot) - w_dh_ * k(L::kFh) - w_dd_ * f(L::kDelta)) / w_dd_piv_;
+      k_delta = f(L::kDelta) - w_d_dd_ * k(L::kDeltaDot);
+      k(L::kDelta) = k_delta;
+    }
+    T rhs[4];
+    for (int r = 0; r < 4; ++r) {
+      T v = f(kCore[r]);
+      for (int p = 0; p < kNumKin; ++p) v -= wcp_[r][p] * f(kKin[p]);
+      if constexpr (L::kAxial) v -= wca_[r] * k_delta;
+      rhs[r] = v;
+    }
+    T kc[4];
+    solve_lu4(rhs, kc);
+    for (int r = 0; r < 4; ++r) k(kCore[r]) = kc[r];
+    for (int p = 0; p < kNumKin; ++p) k(kKin[p]) = f(kKin[p]) + kin_[p] * kc[kKinCore[p]];
+    return k;
+  }
+
+ private:
+  // LU with partial pivoting of the 4x4 core matrix, in place (Doolittle,
+  // unit lower triangle). Written out because Eigen's general
+  // PartialPivLU costs 1,400 instructions per 4x4 on the M4F.
+  void factor_lu4() {
+    for (int i = 0; i < 4; ++i) perm_[i] = i;
+    for (int k = 0; k < 4; ++k) {
+      int piv = k;
+      T big = abs_of(lu_[k][k]);
+      for (int i = k + 1; i < 4; ++i) {
+        const T v = abs_of(lu_[i][k]);
+        if (v > big) {
+          big = v;
+          piv = i;
+        }
+      }
+      if (piv != k) {
+        for (int j = 0; j < 4; ++j) {
+          const T t = lu_[k][j];
+          lu_[k][j] = lu_[piv][j];
+          lu_[piv][j] = t;
+        }
+        const int t = perm_[k];
+        perm_[k] = perm_[piv];
+        perm_[piv] = t;
+      }
+      // A zero pivot (singular W) would give inf/NaN (float) or a saturated
+      // value (fixed); the simulator's watchdog reports either.
+      for (int i = k + 1; i < 4; ++i) {
+        const T l = lu_[i][k] / lu_[k][k];
+        lu_[i][k] = l;
+        for (int j = k + 1; j < 4; ++j) lu_[i][j] -= l * lu_[k][j];
+      }
+    }
+  }
+
+  void solve_lu4(const T b[4], T x[4]) const {
+    T y[4];
+    for (int i = 0; i < 4; ++i) {
+      T v = b[perm_[i]];
+      for (int j = 0; j < i; ++j) v -= lu_[i][j] * y[j];
+      y[i] = v;
+    }
+    for (int i = 3; i >= 0; --i) {
+      T v = y[i];
+      for (int j = i + 1; j < 4; ++j) v -= lu_[i][j] * x[j];
+      x[i] = v / lu_[i][i];
+    }
+  }
+
+  static T abs_of(const T& v) { return v < T(0) ? -v : v; }
+
+  T kin_[3]{};
+  T wcp_[4][3]{};
+  T wca_[4]{};
+  T w_hh_{}, w_d_dd_{}, w_dh_{}, w_dd_{}, w_dd_piv_{};
+  T lu_[4][4]{};
+  int perm_[4]{};
+};
+
+// One step of `m` on the plant: ROS2 and linearly implicit Euler through
+// RomWSolver, the explicit methods through the generic integrators. The
+// dense Rosenbrock code is never instantiated here: with 48 plant types in
+// the CLI, its Eigen LUs were most of the compile time.
+template <class T, std::uint32_t F>
+void rom_step(Method m, const CvtRom<T, F>& sys, typename CvtRom<T, F>::State& x, const T& h) {
+  using Plant = CvtRom<T, F>;
+  switch (m) {
+    case Method::explicit_euler: step_explicit_euler(sys, x, h); return;
+    case Method::semi_implicit_euler: step_semi_implicit_euler(sys, x, h); return;
+    case Method::heun: step_heun(sys, x, h); return;
+    case Method::rk4: step_rk4(sys, x, h); return;
+    case Method::linear_implicit_euler:
+    case Method::ros2: break;
+  }
+  typename Plant::Jacobian J;
+  sys.jacobian(x, J);
+  RomWSolver<T, F> w;
+  typename Plant::State f;
+  sys.derivative(x, f);
+  if (m == Method::linear_implicit_euler) {
+    // (I - h J) k = f(x), x+ = x + h k
+    w.factor(J, h);
+    x += h * w.solve(f);
+    return;
+  }
+  // ROS2 (docs/numerics.md#rosenbrock), gamma = 1 + 1/sqrt(2).
+  const T gamma = T(1.70710678118654752440);
+  w.factor(J, gamma * h);
+  const typename Plant::State k1 = w.solve(f);
+  const typename Plant::State x1 = x + h * k1;
+  sys.derivative(x1, f);
+  f -= T(2) * k1;
+  const typename Plant::State k2 = w.solve(f);
+  x += (h * T(1.5)) * k1 + (h * T(0.5)) * k2;
+}
+
+}  // namespace cvt

@@ -1,0 +1,73 @@
+#pragma once
+// The frames of the ROM cost table (docs/rom.md#cost). One list, used by the
+// Cortex-M4F instruction counts (tests/target/test_rom_cost.cpp) and by the
+// host benchmark (bench/bench_rom.cpp), so both columns of the table measure
+// the same frame from the same state. Heap-free.
+#include <cstdint>
+
+#include "cvtplant/scene/builtin_scenes.hpp"
+#include "cvtplant/scene/scene_runner.hpp"
+
+namespace cvt::rom_cost {
+
+// One row: a built-in scene run with the plant of the visited mask, at
+// `substeps` per frame (0: the scene's own setting).
+struct Case {
+  const char* label;
+  const char* scene;
+  int substeps;
+};
+
+// The feature mask is a template argument of the plant, so the rows are
+// visited at compile time: v.template visit<Mask>(row) for every row.
+// Feature rows use the gross-slip parameter set (no holds, every feature
+// meaningful) and add one feature at a time to the core plant. Chordal action
+// needs >= 4 substeps (docs/rom.md#polygon), hence the core x4 reference row.
+template <class Visitor>
+void for_each_case(Visitor&& v) {
+  namespace f = rom_feature;
+  v.template visit<0>(Case{"scene/oscillator-coulomb", "oscillator-coulomb", 0});
+  v.template visit<0>(Case{"scene/oscillator-stribeck", "oscillator-stribeck", 0});
+  v.template visit<f::axial>(Case{"scene/seed-case1", "seed-case1", 0});
+  v.template visit<f::axial>(Case{"scene/seed-case2", "seed-case2", 0});
+  v.template visit<f::axial | f::road_load>(Case{"scene/clamp-step", "clamp-step", 0});
+  v.template visit<f::axial | f::road_load>(Case{"scene/tip-in", "tip-in", 0});
+  v.template visit<0>(Case{"scene/gross-slip", "gross-slip", 0});
+  v.template visit<0>(Case{"feature/core", "gross-slip", 2});
+  v.template visit<f::axial>(Case{"feature/+axial", "gross-slip", 2});
+  v.template visit<f::road_load>(Case{"feature/+road_load", "gross-slip", 2});
+  v.template visit<f::deformation>(Case{"feature/+deformation", "gross-slip", 2});
+  v.template visit<0>(Case{"feature/core-x4", "gross-slip", 4});
+  v.template visit<f::polygon>(Case{"feature/+polygon-x4", "gross-slip", 4});
+  v.template visit<f::all>(Case{"feature/all-x4", "gross-slip", 4});
+}
+
+// Where the measured frame starts: the scene run on its own input profiles
+// for this long, so the cost is that of normal running, not of the start.
+inline constexpr double kWarmup_s = 1.0;
+
+// A simulator of row `c` at t = kWarmup_s and the inputs of the next frame.
+// The caller copies `sim` before each measured frame so every measured call
+// takes the same path.
+template <class T, std::uint32_t F>
+struct Frame {
+  RomSimulator<T, F> sim;
+  RomInputs<T> next;
+
+  static Scene scene_of(const Case& c) {
+    Scene s = *find_builtin_scene(c.scene);
+    if (c.substeps > 0) s.substeps = c.substeps;
+    return s;
+  }
+
+  explicit Frame(const Case& c) : Frame(scene_of(c)) {}
+
+  explicit Frame(const Scene& s) : sim(s.params, sim_config_of(s)) {
+    sim.reset(s.initial, scene_inputs_at<T>(s, 0.0));
+    const long n = static_cast<long>(kWarmup_s / s.frame_s + 0.5);
+    for (long i = 0; i < n; ++i) sim.step_frame(scene_inputs_at<T>(s, static_cast<double>(i) * s.frame_s));
+    next = scene_inputs_at<T>(s, static_cast<double>(n) * s.frame_s);
+  }
+};
+
+}  // namespace cvt::rom_cost

@@ -1,0 +1,463 @@
+// The SIL bridge on the loopback bus with a virtual clock (docs/sil.md#tests):
+// lock-step stepping, determinism, the command timeout reaction, one
+// rejection counter per malformed-frame kind, stale and repeated frames.
+#define DOCTEST_CONFIG_IMPLEMENT_WITH_MAIN
+#include <doctest/doctest.h>
+
+#include <cstring>
+#include <vector>
+
+#include "cvtplant/port/loopback_transport.hpp"
+#include "cvtplant/sil/bridge.hpp"
+
+using namespace cvt;
+using port::CanIoStatus;
+using sil::Bridge;
+
+namespace {
+
+using Bus = port::LoopbackBus<2, 64>;
+
+// The harness/controller side: node 1 of the loopback bus.
+struct Peer {
+  port::CanTransport& node;
+  can::TxChannel<can::SimCtrl> sim;
+  can::TxChannel<can::CtrlCmd> cmd;
+  can::TxChannel<can::HarnessLoad> load;
+  uint8_t seq = 0;
+
+  can::CanFrame cmd_frame(float clamp_N, float torque_Nm) {
+    can::CtrlCmd m;
+    m.clamp_force_cmd_N = clamp_N;
+    m.driver_torque_req_Nm = torque_Nm;
+    can::CanFrame f;
+    REQUIRE(cmd.encode(m, f) == can::CodecStatus::Ok);
+    return f;
+  }
+  void send_cmd(float clamp_N, float torque_Nm) { REQUIRE(node.send(cmd_frame(clamp_N, torque_Nm)) == CanIoStatus::Ok); }
+  void request(can::SimRequest r, uint16_t steps = 0, can::SceneId scene = can::SceneId::Keep) {
+    can::SimCtrl m;
+    m.sim_request = r;
+    m.step_count = steps;
+    m.scene_id = scene;
+    m.step_seq = seq;
+    seq = static_cast<uint8_t>((seq + 1) & 0x0F);
+    can::CanFrame f;
+    REQUIRE(sim.encode(m, f) == can::CodecStatus::Ok);
+    REQUIRE(node.send(f) == CanIoStatus::Ok);
+  }
+};
+
+struct Group {
+  std::vector<can::CanFrame> frames;
+  can::PlantSpeeds speeds;
+  can::PlantRatio ratio;
+  can::PlantForces forces;
+  can::PlantStatus status;
+  bool has_diag = false;
+  can::PlantDiag diag;
+};
+
+// Reads one output group and decodes it with a fresh, independent decoder.
+Group read_group(port::CanTransport& node) {
+  Group g;
+  can::CanFrame f;
+  while (node.receive(f, 0) == CanIoStatus::Ok) {
+    g.frames.push_back(f);
+    can::AnyMessage a;
+    REQUIRE(can::decode_any(f, a) == can::CodecStatus::Ok);
+    switch (a.which) {
+      case can::MessageId::PlantSpeeds: g.speeds = a.plant_speeds; break;
+      case can::MessageId::PlantRatio: g.ratio = a.plant_ratio; break;
+      case can::MessageId::PlantForces: g.forces = a.plant_forces; break;
+      case can::MessageId::PlantDiag: g.has_diag = true; g.diag = a.plant_diag; break;
+      case can::MessageId::PlantStatus: g.status = a.plant_status; return g;
+      default: FAIL("unexpected message from the bridge");
+    }
+  }
+  FAIL("no PlantStatus closing the group");
+  return g;
+}
+
+struct Rig {
+  port::VirtualClock clock;
+  Bus bus{&clock};
+  Bridge bridge{bus.node(0), clock};
+  Peer peer{bus.node(1), {}, {}, {}};
+
+  explicit Rig(const char* scene = "tip-in") { REQUIRE(bridge.load_scene(*find_builtin_scene(scene))); }
+  Group step(uint16_t n) {
+    peer.request(can::SimRequest::Step, n);
+    bridge.service(0);
+    return read_group(bus.node(1));
+  }
+};
+
+}  // namespace
+
+TEST_CASE("lock-step: a Step advances exactly step_count frames and answers one group") {
+  Rig rig;
+  const uint8_t seq0 = rig.peer.seq;
+  Group g = rig.step(37);
+  CHECK(rig.bridge.plant().frames() == 37);
+  CHECK(g.status.sim_time_us == 37000u);
+  CHECK(g.status.step_seq_ack == seq0);
+  CHECK(g.status.plant_mode == can::PlantMode::LockStep);
+  REQUIRE(g.frames.size() == 4);  // no 100 ms boundary crossed: no PlantDiag
+  CHECK(g.frames[0].id == can::PlantSpeeds::kId);
+  CHECK(g.frames[1].id == can::PlantRatio::kId);
+  CHECK(g.frames[2].id == can::PlantForces::kId);
+  CHECK(g.frames[3].id == can::PlantStatus::kId);
+  CHECK(g.speeds.sample_tag == g.status.sample_tag);
+
+  g = rig.step(0);  // a query: no frame advanced
+  CHECK(rig.bridge.plant().frames() == 37);
+  CHECK(g.status.sim_time_us == 37000u);
+  CHECK(g.status.sample_tag == 1);
+
+  g = rig.step(63);  // crosses 100 ms: PlantDiag before PlantStatus
+  CHECK(rig.bridge.plant().frames() == 100);
+  CHECK(g.status.sim_time_us == 100000u);
+  CHECK(g.has_diag);
+  CHECK(g.frames.back().id == can::PlantStatus::kId);
+  CHECK(rig.bridge.steps_requested() == 100);
+}
+
+TEST_CASE("lock-step: the latest valid command drives the plant and two runs are bit-identical") {
+  auto run = [](std::vector<can::CanFrame>& trace) {
+    Rig rig;
+    for (int k = 0; k < 30; ++k) {
+      rig.peer.send_cmd(3000.0f + 100.0f * static_cast<float>(k), 20.0f + static_cast<float>(k));
+      const Group g = rig.step(10);
+      trace.insert(trace.end(), g.frames.begin(), g.frames.end());
+    }
+    return rig.bridge.plant().outputs();
+  };
+  std::vector<can::CanFrame> a, b;
+  const RomOutputs<double> oa = run(a);
+  run(b);
+  REQUIRE(a.size() == b.size());
+  REQUIRE(a.size() > 100);
+  for (size_t i = 0; i < a.size(); ++i) {
+    CHECK(a[i].id == b[i].id);
+    CHECK(std::memcmp(a[i].data, b[i].data, 8) == 0);
+  }
+
+  // The same inputs applied offline to the scene's simulator give the same
+  // state: the bridge applied each command for exactly its 10 frames.
+  const Scene& s = *find_builtin_scene("tip-in");
+  RomSimulator<double, sil::kAxialRoadLoad> sim(s.params, sim_config_of(s));
+  sim.reset(s.initial, scene_inputs_at<double>(s, 0.0));
+  for (int k = 0; k < 30; ++k) {
+    for (int i = 0; i < 10; ++i) {
+      RomInputs<double> u;
+      u.clamp_N = 3000.0 + 100.0 * k;
+      u.tau_in_Nm = static_cast<double>(static_cast<float>(20.0f + static_cast<float>(k)));
+      u.tau_load_Nm = s.tau_load.at(static_cast<double>(k * 10 + i) * 1e-3);
+      REQUIRE(sim.step_frame(u) == RomFault::none);
+    }
+  }
+  CHECK(sim.outputs().omega1_rad_s == oa.omega1_rad_s);
+  CHECK(sim.outputs().clamp_force_N == oa.clamp_force_N);
+}
+
+TEST_CASE("lock-step command timeout: substitute 20 kN / 0 N m, fault flag, counted, recovery") {
+  Rig rig;
+  rig.peer.send_cmd(5000.0f, 50.0f);
+  Group g = rig.step(50);  // frames start at 0..49 ms: 49 ms since the command
+  CHECK(rig.bridge.cmd_state() == Bridge::CmdState::Valid);
+  CHECK_FALSE(g.status.fault_cmd_timeout);
+  CHECK(rig.bridge.current_inputs().clamp_N == 5000.0);
+
+  g = rig.step(1);  // the frame starting at 50 ms sees the deadline
+  CHECK(rig.bridge.cmd_state() == Bridge::CmdState::TimedOut);
+  CHECK(g.status.fault_cmd_timeout);
+  CHECK(rig.bridge.current_inputs().clamp_N == 20000.0);
+  CHECK(rig.bridge.current_inputs().tau_in_Nm == 0.0);
+  CHECK(rig.bridge.cmd_timeouts() == 1);
+
+  g = rig.step(49);  // 100 ms: PlantDiag carries the count; no second event
+  REQUIRE(g.has_diag);
+  CHECK(g.diag.cmd_timeouts == 1);
+  CHECK(g.status.fault_cmd_timeout);
+  // The clamp follows the substitute through the actuator lag (20 ms).
+  CHECK(g.forces.driver_axial_force_N > 15000.0f);
+
+  // Recovery: the checker was reset, so a fresh frame is accepted whatever
+  // its counter; the flag clears with the next status.
+  rig.peer.cmd.reset();
+  rig.peer.send_cmd(6000.0f, 40.0f);
+  g = rig.step(1);
+  CHECK(rig.bridge.cmd_state() == Bridge::CmdState::Valid);
+  CHECK_FALSE(g.status.fault_cmd_timeout);
+  CHECK(rig.bridge.current_inputs().clamp_N == 6000.0);
+}
+
+TEST_CASE("monitoring starts on entering lock-step even without any command") {
+  Rig rig;
+  Group g = rig.step(50);
+  CHECK(rig.bridge.cmd_state() == Bridge::CmdState::NoneYet);
+  CHECK(rig.bridge.current_inputs().clamp_N == 4000.0);  // tip-in scene profile until then
+  g = rig.step(1);
+  CHECK(g.status.fault_cmd_timeout);
+  CHECK(rig.bridge.current_inputs().clamp_N == 20000.0);
+}
+
+namespace {
+void fix_crc(can::CanFrame& f, uint16_t data_id) { f.data[0] = can::e2e_crc(data_id, f.data); }
+}  // namespace
+
+TEST_CASE("malformed frames: each kind rejected and counted, plant keeps running, command unchanged") {
+  Rig rig;
+  rig.peer.send_cmd(5000.0f, 30.0f);
+  rig.step(10);
+  REQUIRE(rig.bridge.rx().accepted == 2);  // CtrlCmd + SimCtrl
+  port::CanTransport& n = rig.bus.node(1);
+
+  auto expect_rejected = [&](const can::CanFrame& f, uint64_t sil::RxCounts::*counter, const char* what) {
+    CAPTURE(what);
+    const uint64_t before = rig.bridge.rx().*counter;
+    const uint64_t rejected_before = rig.bridge.rx().rejected();
+    const long frames_before = rig.bridge.plant().frames();
+    REQUIRE(n.send(f) == CanIoStatus::Ok);
+    const Group g = rig.step(5);
+    CHECK(rig.bridge.rx().*counter == before + 1);
+    CHECK(rig.bridge.rx().rejected() == rejected_before + 1);
+    CHECK(g.status.fault_rx_rejected);
+    CHECK(rig.bridge.plant().frames() == frames_before + 5);  // still stepping
+    CHECK(rig.bridge.command().clamp_force_cmd_N == 5000.0f);
+  };
+
+  // Every malformed frame below carries clamp 59000 N: applying any of them
+  // would show up in command().
+  // would show up in command(). Counter 1 is the next valid one.
+  const can::CanFrame good = rig.peer.cmd_frame(59000.0f, 30.0f);
+
+  can::CanFrame f = good;
+  f.dlc = 7;
+  expect_rejected(f, &sil::RxCounts::wrong_dlc, "wrong DLC");
+
+  f = good;
+  f.data[0] ^= 0x5A;
+  expect_rejected(f, &sil::RxCounts::wrong_crc, "bad CRC");
+
+  f = good;
+  f.data[1] = static_cast<uint8_t>((f.data[1] & 0xF0u) | 6u);  // jump of 6 > max delta 2
+  fix_crc(f, can::CtrlCmd::kE2eDataId);
+  expect_rejected(f, &sil::RxCounts::wrong_sequence, "wrong counter");
+
+  f = good;
+  f.data[2] = 0x61;  // clamp raw 0xEA61 = 60001 > 60000: out of range, CRC valid
+  f.data[3] = 0xEA;
+  fix_crc(f, can::CtrlCmd::kE2eDataId);
+  expect_rejected(f, &sil::RxCounts::out_of_range, "out-of-range value");
+
+  {
+    can::SimCtrl m;
+    m.sim_request = can::SimRequest::None;
+    can::TxChannel<can::SimCtrl> other;
+    REQUIRE(other.encode(m, f) == can::CodecStatus::Ok);
+    f.data[1] = static_cast<uint8_t>((f.data[1] & 0x0Fu) | 0x90u);  // sim_request 9: not in the VAL_ table
+    // Counter of the harness's next SimCtrl so only the enum is wrong.
+    f.data[1] = static_cast<uint8_t>((f.data[1] & 0xF0u) | rig.peer.sim.protector().next_counter());
+    fix_crc(f, can::SimCtrl::kE2eDataId);
+    expect_rejected(f, &sil::RxCounts::invalid_enum, "invalid enum");
+  }
+
+  f = good;
+  f.id = 0x555;
+  expect_rejected(f, &sil::RxCounts::unknown_id, "unknown ID");
+
+  f = good;
+  f.flags = can::kFrameRemote;
+  expect_rejected(f, &sil::RxCounts::not_data_frame, "remote frame");
+
+  f = good;
+  f.flags = can::kFrameExtendedId;
+  expect_rejected(f, &sil::RxCounts::not_data_frame, "extended ID");
+
+  // None of the above moved the E2E reference: the frame they were built
+  // from is still the next valid one.
+  REQUIRE(n.send(good) == CanIoStatus::Ok);
+  rig.step(1);
+  CHECK(rig.bridge.command().clamp_force_cmd_N == 59000.0f);
+}
+
+TEST_CASE("error frames and bus-off are reported, never decoded; sends refused while bus-off") {
+  Rig rig;
+  rig.step(1);
+  rig.bus.inject_error(0, port::can_err::kProtocol);
+  Group g = rig.step(1);
+  CHECK(rig.bridge.rx().error_frames == 1);
+  CHECK(rig.bridge.rx().rejected() == 0);
+  CHECK(rig.bridge.rx().accepted == 2);  // only the two SimCtrl requests
+  CHECK(g.status.fault_bus_error);
+  g = rig.step(1);
+  CHECK_FALSE(g.status.fault_bus_error);
+
+  rig.bus.inject_error(0, port::can_err::kBusOff);
+  rig.peer.request(can::SimRequest::Step, 3);
+  rig.bridge.service(0);
+  CHECK(rig.bridge.plant().frames() == 6);  // the plant kept stepping
+  CHECK(rig.bridge.tx().bus_off_refused == 4);
+  can::CanFrame r;
+  CHECK(rig.bus.node(1).receive(r, 0) == CanIoStatus::Timeout);
+
+  rig.bus.inject_error(0, port::can_err::kRestarted);
+  g = rig.step(1);
+  CHECK(g.status.fault_bus_error);  // the bus-off, whose own status never went out
+  CHECK(rig.bridge.rx().error_frames == 3);
+}
+
+TEST_CASE("ENOBUFS: bounded retries still deliver, beyond the bound the frame is dropped and counted") {
+  Rig rig;
+  rig.bus.node(0).fail_next_tx_attempts(Bus::kTxRetryBound);
+  Group g = rig.step(1);
+  CHECK(g.frames.size() == 4);
+  CHECK(rig.bus.node(0).counters().tx_enobufs_retries == Bus::kTxRetryBound);
+
+  rig.bus.node(0).fail_next_tx_attempts(Bus::kTxRetryBound + 1);
+  rig.peer.request(can::SimRequest::Step, 1);
+  rig.bridge.service(0);
+  CHECK(rig.bridge.tx().failed == 1);
+  CHECK(rig.bus.node(0).counters().tx_dropped == 1);
+  g = read_group(rig.bus.node(1));
+  CHECK(g.frames.size() == 3);  // PlantSpeeds was the dropped one
+  CHECK(g.frames[0].id == can::PlantRatio::kId);
+}
+
+TEST_CASE("a repeated frame (same counter, valid CRC, new value) is never applied") {
+  Rig rig;
+  const can::CanFrame first = rig.peer.cmd_frame(5000.0f, 30.0f);
+  REQUIRE(rig.bus.node(1).send(first) == CanIoStatus::Ok);
+  rig.step(1);
+  CHECK(rig.bridge.command().clamp_force_cmd_N == 5000.0f);
+
+  can::CanFrame replay = first;
+  replay.data[2] = 0x10;  // 10000 N ...
+  replay.data[3] = 0x27;
+  fix_crc(replay, can::CtrlCmd::kE2eDataId);  // ... with the old counter and a valid CRC
+  REQUIRE(rig.bus.node(1).send(replay) == CanIoStatus::Ok);
+  rig.step(1);
+  CHECK(rig.bridge.rx().repeated == 1);
+  CHECK(rig.bridge.command().clamp_force_cmd_N == 5000.0f);
+
+  // A replayed SimCtrl Step is not executed either.
+  rig.peer.seq = 3;
+  rig.peer.sim.reset();
+  can::CanFrame step;
+  can::SimCtrl m;
+  m.sim_request = can::SimRequest::Step;
+  m.step_count = 100;
+  // SimCtrl accepts any counter jump but 0 (docs/can.md#e2e-checker): the
+  // replay carries counter 1, that of the last Step.
+  REQUIRE(rig.peer.sim.encode(m, step) == can::CodecStatus::Ok);
+  REQUIRE(rig.peer.sim.encode(m, step) == can::CodecStatus::Ok);
+  REQUIRE(can::e2e_counter(step.data) == 1);
+  const long before = rig.bridge.plant().frames();
+  REQUIRE(rig.bus.node(1).send(step) == CanIoStatus::Ok);
+  rig.bridge.service(0);
+  CHECK(rig.bridge.plant().frames() == before);
+  CHECK(rig.bridge.rx().repeated == 2);
+}
+
+TEST_CASE("real time: frames queued during a command outage are drained, not applied") {
+  Rig rig;
+  rig.bridge.start_realtime();
+  rig.peer.send_cmd(5000.0f, 30.0f);
+  rig.bridge.realtime_frame();
+  CHECK(rig.bridge.command().clamp_force_cmd_N == 5000.0f);
+
+  // The bridge stalls for 60 ms; meanwhile five commands pile up in its queue.
+  for (int i = 0; i < 5; ++i) rig.peer.send_cmd(59000.0f, 30.0f);
+  rig.clock.advance(60000000);
+  rig.bridge.realtime_frame();
+  CHECK(rig.bridge.cmd_state() == Bridge::CmdState::TimedOut);
+  CHECK(rig.bridge.rx().stale_discarded == 5);
+  CHECK(rig.bridge.command().clamp_force_cmd_N == 20000.0f);
+
+  // The next fresh frame is the new reference.
+  rig.peer.send_cmd(7000.0f, 30.0f);
+  rig.bridge.realtime_frame();
+  CHECK(rig.bridge.cmd_state() == Bridge::CmdState::Valid);
+  CHECK(rig.bridge.command().clamp_force_cmd_N == 7000.0f);
+  CHECK(rig.bridge.cmd_timeouts() == 1);
+}
+
+TEST_CASE("real time: cyclic frames follow the DBC cycle times") {
+  Rig rig;
+  rig.bridge.start_realtime();
+  for (int i = 0; i < 100; ++i) {
+    rig.peer.send_cmd(5000.0f, 30.0f);
+    rig.bridge.realtime_frame();
+    rig.clock.advance(1000000);
+  }
+  int speeds = 0, status = 0, diag = 0;
+  can::CanFrame f;
+  while (rig.bus.node(1).receive(f, 0) == CanIoStatus::Ok) {
+    speeds += f.id == can::PlantSpeeds::kId;
+    status += f.id == can::PlantStatus::kId;
+    diag += f.id == can::PlantDiag::kId;
+  }
+  CHECK(speeds == 100 / can::PlantSpeeds::kCycleTime_ms);
+  CHECK(status == 100 / can::PlantStatus::kCycleTime_ms);
+  CHECK(diag == 100 / can::PlantDiag::kCycleTime_ms);
+  CHECK(rig.bridge.cmd_timeouts() == 0);
+}
+
+TEST_CASE("Reset selects a scene; an unknown feature set is a scene fault, not a crash") {
+  Rig rig;
+  rig.peer.request(can::SimRequest::Reset, 0, can::SceneId::GrossSlip);
+  rig.bridge.service(0);
+  Group g = read_group(rig.bus.node(1));
+  REQUIRE(rig.bridge.plant().scene() != nullptr);
+  CHECK(std::strcmp(rig.bridge.plant().scene()->name, "gross-slip") == 0);
+  CHECK(g.status.plant_mode == can::PlantMode::Ready);
+  CHECK_FALSE(g.status.fault_scene);
+  CHECK(g.status.sim_time_us == 0u);
+
+  Scene odd = *find_builtin_scene("tip-in");
+  odd.features = rom_feature::polygon;
+  CHECK_FALSE(rig.bridge.load_scene(odd));
+  CHECK(rig.bridge.fault_scene());
+}
+
+namespace {
+// A clock on which every reading costs `cost_ns`: the bridge's work per
+// frame then takes a known, deterministic amount of time.
+class SlowClock final : public port::Clock {
+ public:
+  explicit SlowClock(int64_t cost_ns) : cost_(cost_ns) {}
+  int64_t now_ns() const noexcept override { return t_ += cost_; }
+  void sleep_until(int64_t t_ns) noexcept override {
+    if (t_ns > t_) t_ = t_ns;
+  }
+
+ private:
+  int64_t cost_;
+  mutable int64_t t_ = 0;
+};
+}  // namespace
+
+TEST_CASE("real-time pacing: on time without overruns; slow frames are overruns and are caught up") {
+  for (const int64_t cost : {int64_t{0}, int64_t{600000}}) {
+    CAPTURE(cost);
+    SlowClock clock(cost);
+    Bus bus(nullptr);
+    Bridge bridge(bus.node(0), clock);
+    REQUIRE(bridge.load_scene(*find_builtin_scene("tip-in")));
+    bridge.start_realtime();
+    std::vector<int64_t> late;
+    sil::pace_realtime(bridge, clock, 200000000, nullptr, [&](int64_t ns) { late.push_back(ns); });
+    CHECK(bridge.plant().frames() == 200);  // 200 ms simulated, one frame per period
+    CHECK(late.size() == 200);
+    if (cost == 0) {
+      CHECK(bridge.rt_overruns() == 0);
+      CHECK(late.back() == 0);
+    } else {
+      // Every frame reads the clock at least twice (1.2 ms > 1 ms period).
+      CHECK(bridge.rt_overruns() == 200);
+      CHECK(late.back() > late.front());  // behind, and catching up without sleeping
+    }
+  }
+}
