@@ -83,6 +83,24 @@ class Run(unittest.TestCase):
             self.assertEqual(r.returncode, 0, name + r.stderr)
 
 
+    def test_wedging_scene_shifts_the_ratio(self):
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "shift.csv")
+            r = run("run", "--scene", os.path.join(SCENES, "ratio-shift.toml"), "--csv", out, "--json")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            summary = json.loads(r.stdout)
+            self.assertEqual(summary["fault"], "none")
+            self.assertIn("wedging", summary["features"])
+            with open(out) as f:
+                rows = list(csv.DictReader(f))
+            first, last = rows[0], rows[-1]
+            # Upshift: the driver radius grows, the driven one shrinks, r2/r1 falls.
+            self.assertGreater(float(last["r1"]), float(first["r1"]) + 0.005)
+            self.assertLess(float(last["r2"]), float(first["r2"]) - 0.004)
+            self.assertLess(float(last["geometric_ratio"]), 0.85 * float(first["geometric_ratio"]))
+            self.assertAlmostEqual(float(first["geometric_ratio"]), 0.1143 / 0.0762, places=9)
+
+
 class BadInput(unittest.TestCase):
     def assert_usage(self, r, *parts):
         self.assertEqual(r.returncode, 2, r.stdout + r.stderr)
@@ -126,6 +144,15 @@ class BadInput(unittest.TestCase):
             self.assert_usage(run("run", "--scene", p), p + ":1:", "features", "warp_drive")
             p = write(d, "k.toml", 'base = "tip-in"\n[inputs]\ntau_in = { kind = "square", value = 1 }\n')
             self.assert_usage(run("run", "--scene", p), p + ":3:", "kind")
+
+    def test_wedging_needs_axial_and_floating_point(self):
+        shift = os.path.join(SCENES, "ratio-shift.toml")
+        self.assert_usage(run("run", "--scene", shift, "--scalar", "fixed"), "scalar", "double or float")
+        with tempfile.TemporaryDirectory() as d:
+            p = write(d, "w.toml", 'base = "tip-in"\nfeatures = ["wedging"]\n')
+            self.assert_usage(run("run", "--scene", p), p + ":2:", "features", "axial")
+            p = write(d, "l.toml", 'base = "tip-in"\nfeatures = ["axial", "wedging"]\n[params]\nbeta0_deg = 76\n')
+            self.assert_usage(run("run", "--scene", p), p + ":4:", "beta0_deg", "self-locking")
 
 
 if __name__ == "__main__":

@@ -18,6 +18,8 @@
 
 #include "cvtplant/integrate/method.hpp"
 #include "cvtplant/plant/oscillator.hpp"
+#include "cvtplant/scene/builtin_scenes.hpp"
+#include "cvtplant/scene/scene_runner.hpp"
 #include "cvtplant/scalar/fixed_eigen.hpp"
 
 namespace {
@@ -51,6 +53,16 @@ void run_all_methods(double h) {
   }
 }
 
+// 100 frames of the drive-train plant with the features of mask F, through
+// the simulator (ledger, watchdog, the structured or the dense solve).
+template <class T, std::uint32_t F>
+void run_rom_frames(const char* scene) {
+  cvt::Scene s = *cvt::find_builtin_scene(scene);
+  s.features = F;
+  s.t_end_s = 0.1;
+  cvt::run_scene<T, F>(s, cvt::sim_config_of(s), [](long, double, const auto&) { return true; });
+}
+
 }  // namespace
 
 int main() {
@@ -75,6 +87,18 @@ int main() {
   Eigen::internal::set_is_malloc_allowed(true);
   check(g_news == news_before, "no operator new during plant steps");
 
-  std::printf("%d passed, %d failed\n", 2 - failures, failures);
+  // 3. The drive-train plant: every feature (wedging: dense 11x11 LU and
+  // dual-number Jacobian), and every fixed-point feature.
+  namespace f = cvt::rom_feature;
+  const long news_rom = g_news;
+  Eigen::internal::set_is_malloc_allowed(false);
+  run_rom_frames<double, f::all>("clamp-step");
+  run_rom_frames<float, f::all>("clamp-step");
+  run_rom_frames<cvt::q16_16, f::basic>("clamp-step");
+  run_rom_frames<double, 0>("seed-case1");
+  Eigen::internal::set_is_malloc_allowed(true);
+  check(g_news == news_rom, "no operator new during drive-train plant frames");
+
+  std::printf("%d passed, %d failed\n", 3 - failures, failures);
   return failures == 0 ? 0 : 1;
 }

@@ -50,7 +50,7 @@ std::uint32_t frame_icount(const rom_cost::Case& c, const char* scalar, std::uin
 
 struct CountFrames {
   std::uint32_t seed_case1 = 0;
-  std::uint32_t core = 0, all_x4 = 0, core_x4 = 0;
+  std::uint32_t core = 0, all_x4 = 0, core_x4 = 0, seed_case1_wedging = 0;
 
   template <std::uint32_t F>
   void visit(const rom_cost::Case& c) {
@@ -58,7 +58,8 @@ struct CountFrames {
     if (str_is(c.label, "scene/seed-case1")) seed_case1 = n;
     if (str_is(c.label, "feature/core")) core = n;
     if (str_is(c.label, "feature/core-x4")) core_x4 = n;
-    if (str_is(c.label, "feature/all-x4")) all_x4 = n;
+    if (str_is(c.label, "feature/all-but-wedging-x4")) all_x4 = n;
+    if (str_is(c.label, "feature/seed-case1+wedging")) seed_case1_wedging = n;
   }
 
   static bool str_is(const char* a, const char* b) { return cvt::target::str_equal(a, b); }
@@ -76,6 +77,8 @@ CVT_TARGET_TEST(rom_frame_instruction_counts_float) {
   // all features cost more than none: the counts measure the plant at all.
   CHECK_GT(counts.core_x4, counts.core + counts.core / 2);
   CHECK_GT(counts.all_x4, counts.core_x4);
+  // Wedging adds two states and a dense 11x11 LU (docs/rom.md#wedging).
+  CHECK_GT(counts.seed_case1_wedging, counts.seed_case1);
 }
 
 // The default scene in q16.16, for FPU-less targets: every product is a

@@ -123,12 +123,12 @@ TEST_CASE("ROM analytic Jacobian equals the dual-number Jacobian for every featu
     check_jacobian_against_duals<f::road_load>(p, x0, 3000.0);
     check_jacobian_against_duals<f::deformation>(p, x0, 3000.0);
     check_jacobian_against_duals<f::polygon>(p, x0, 3000.0);
-    check_jacobian_against_duals<f::all>(p, x0, 3000.0);
+    check_jacobian_against_duals<f::basic>(p, x0, 3000.0);
     p.friction = fr;
   }
   // Near stick, where the atan slope dominates.
   x0.omega2_rad_s = 100.0;
-  check_jacobian_against_duals<f::all>(p, x0, 3000.0);
+  check_jacobian_against_duals<f::basic>(p, x0, 3000.0);
   p.hold_driver_speed = true;
   check_jacobian_against_duals<f::axial | f::road_load>(p, x0, 3000.0);
 }
@@ -222,7 +222,7 @@ TEST_CASE("fixed-point ROM: derivative and Jacobian in its units equal the SI on
     // Chordal action: r1 cos(psi) has 1.5e-5 m resolution, so v1 = r1e w1
     // carries ~2e-4 m/s at 150 rad/s, and the steep friction force follows
     // (docs/rom.md#fixed-point): no built-in scene uses it in fixed point.
-    check_fixed_units<f::all>(p, x0, 4000.0, 1e-2);
+    check_fixed_units<f::basic>(p, x0, 4000.0, 1e-2);
   }
 }
 
@@ -264,7 +264,7 @@ TEST_CASE("ROM structured linear solve equals the dense LU step for every featur
     check_structured_step<f::axial>(p, x0, m);
     check_structured_step<f::road_load>(p, x0, m);
     check_structured_step<f::polygon>(p, x0, m);
-    check_structured_step<f::all>(p, x0, m);
+    check_structured_step<f::basic>(p, x0, m);
     p.hold_driver_speed = true;  // a held pulley: identity row and column
     check_structured_step<f::axial | f::road_load>(p, x0, m);
     p.hold_driver_speed = false;

@@ -2,7 +2,7 @@
 // The trace collector of `cvtplant rom-accuracy` for one plant type
 // (docs/rom.md#real-time-integrator), shared by cmd_rom_accuracy.cpp and the
 // per-scalar translation units cmd_rom_accuracy_{double,float,fixed}.cpp:
-// each instantiates the 16 feature masks of one scalar, so the build
+// each instantiates the feature masks of one scalar, so the build
 // compiles the three in parallel.
 #include <chrono>
 #include <cstdint>

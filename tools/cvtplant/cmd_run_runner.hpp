@@ -1,7 +1,7 @@
 #pragma once
 // The frame loop of `cvtplant run` for one plant type (docs/cli.md#run),
 // shared by cmd_run.cpp and the per-scalar translation units
-// cmd_run_{double,float,fixed}.cpp: each of those instantiates the 16
+// cmd_run_{double,float,fixed}.cpp: each of those instantiates the
 // feature masks of one scalar, so the build compiles the three in parallel.
 #include <algorithm>
 #include <chrono>
@@ -40,12 +40,13 @@ struct Runner {
       std::fprintf(csv, "t,omega1,omega2,F_ax,slip");
       if (log & cvt::rom_log::torques) std::fprintf(csv, ",tau_in,tau_load,torque_transmitted");
       if (log & cvt::rom_log::friction) std::fprintf(csv, ",F1,F2,v_rel1,v_rel2,stick1,stick2");
-      if (log & cvt::rom_log::ratios) std::fprintf(csv, ",speed_ratio,geometric_ratio");
+      if (log & cvt::rom_log::ratios) std::fprintf(csv, ",speed_ratio,geometric_ratio,r1,r2");
       if (log & cvt::rom_log::energy)
         std::fprintf(csv, ",E_stored,W_in,W_actuator,W_load,W_friction,W_damping,E_residual");
       if (log & cvt::rom_log::states) {
         for (const char* n : kStateNames) std::fprintf(csv, ",%s", n);
         if (L::kAxial) std::fprintf(csv, ",F_h,delta,delta_dot");
+        if (L::kWedge) std::fprintf(csv, ",rho,rho_dot");
         if (L::kPolygon) std::fprintf(csv, ",psi");
       }
       std::fprintf(csv, ",fault\n");
@@ -72,7 +73,9 @@ struct Runner {
         if (log & cvt::rom_log::friction)
           std::fprintf(csv, ",%.10g,%.10g,%.10g,%.10g,%d,%d", d(o.friction1_N), d(o.friction2_N), d(o.v_rel1_m_s),
                        d(o.v_rel2_m_s), o.stick1 ? 1 : 0, o.stick2 ? 1 : 0);
-        if (log & cvt::rom_log::ratios) std::fprintf(csv, ",%.10g,%.10g", d(o.speed_ratio), d(o.geometric_ratio));
+        if (log & cvt::rom_log::ratios)
+          std::fprintf(csv, ",%.10g,%.10g,%.10g,%.10g", d(o.speed_ratio), d(o.geometric_ratio), d(o.radius1_m),
+                       d(o.radius2_m));
         if (log & cvt::rom_log::energy)
           std::fprintf(csv, ",%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.6g", double(e.stored_J), double(e.input_J),
                        double(e.actuator_J), double(e.load_J), double(e.friction_loss_J), double(e.damping_loss_J),

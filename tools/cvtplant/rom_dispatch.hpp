@@ -1,9 +1,10 @@
 #pragma once
 // Maps a scene's run-time scalar kind and feature mask onto the compile-time
-// plant type (docs/rom.md#features). Every combination of the four feature
+// plant type (docs/rom.md#features). Every valid combination of the feature
 // bits is instantiated, so any scene file runs; firmware instantiates only
 // the plant it ships.
 #include <cstdint>
+#include <type_traits>
 
 #include "cvtplant/scalar/fixed_eigen.hpp"
 #include "cvtplant/scalar/scalar.hpp"
@@ -14,7 +15,19 @@ namespace cvtcli {
 // fn.template call<T, F>() for the scalar/features of the scene.
 template <class T, class Fn>
 decltype(auto) with_features(std::uint32_t features, Fn&& fn) {
-  switch (features & cvt::rom_feature::all) {
+  // Wedging (bit 4) comes with axial (bit 0) and floating point only
+  // (validate_scene rejects the rest before a run): 8 more plants per scalar.
+  if constexpr (std::is_floating_point_v<T>) {
+    switch (features & cvt::rom_feature::all) {
+#define CVT_ROM_CASE(N) \
+  case N: return fn.template call<T, N>();
+      CVT_ROM_CASE(17) CVT_ROM_CASE(19) CVT_ROM_CASE(21) CVT_ROM_CASE(23)
+      CVT_ROM_CASE(25) CVT_ROM_CASE(27) CVT_ROM_CASE(29) CVT_ROM_CASE(31)
+#undef CVT_ROM_CASE
+      default: break;
+    }
+  }
+  switch (features & cvt::rom_feature::basic) {
 #define CVT_ROM_CASE(N) \
   case N: return fn.template call<T, N>();
     CVT_ROM_CASE(0) CVT_ROM_CASE(1) CVT_ROM_CASE(2) CVT_ROM_CASE(3)
@@ -28,7 +41,7 @@ decltype(auto) with_features(std::uint32_t features, Fn&& fn) {
 
 // Calls the entry point for `scalar`. Commands keep one entry point per
 // scalar, each in its own translation unit (cmd_<name>_{double,float,fixed}.cpp,
-// calling with_features<T>), so the 48 plant types compile in parallel.
+// calling with_features<T>), so the 64 plant types compile in parallel.
 template <class R, class Arg>
 R by_scalar(cvt::ScalarKind scalar, Arg& arg, R (*f64)(Arg&), R (*f32)(Arg&), R (*q16)(Arg&)) {
   switch (scalar) {

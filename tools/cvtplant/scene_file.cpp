@@ -25,7 +25,8 @@ struct FeatureName {
 constexpr FeatureName kFeatureNames[] = {{"axial", cvt::rom_feature::axial},
                                          {"road_load", cvt::rom_feature::road_load},
                                          {"deformation", cvt::rom_feature::deformation},
-                                         {"polygon", cvt::rom_feature::polygon}};
+                                         {"polygon", cvt::rom_feature::polygon},
+                                         {"wedging", cvt::rom_feature::wedging}};
 constexpr FeatureName kLogNames[] = {{"torques", cvt::rom_log::torques},
                                      {"friction", cvt::rom_log::friction},
                                      {"ratios", cvt::rom_log::ratios},
@@ -203,7 +204,7 @@ class Reader {
     }
     out.name = text(root_, "", "name", base.empty() ? std::string("unnamed") : base);
     out.summary = text(root_, "", "summary", "");
-    s.features = name_list(root_, "features", kFeatureNames, 4, s.features);
+    s.features = name_list(root_, "features", kFeatureNames, 5, s.features);
     s.log = name_list(root_, "log", kLogNames, 5, s.log);
     s.t_end_s = number(root_, "", "t_end_s", s.t_end_s);
     s.frame_s = number(root_, "", "frame_s", s.frame_s);
@@ -227,7 +228,8 @@ class Reader {
                   {"r1_m", "r2_m", "beta0_deg", "center_distance_m", "J1_kgm2", "J2_kgm2", "lump_mass_kg", "k1_N_m",
                    "c1_Ns_m", "k2_N_m", "c2_Ns_m", "hold_driver_speed", "hold_driven_speed", "stick_speed_m_s",
                    "actuator_tau_s", "clamp_max_N", "sheave_mass_kg", "sheave_damping_Ns_m", "K_ax_N_m", "road_T0_Nm",
-                   "road_cv_Nms_rad", "road_ca_Nms2_rad2", "road_w_eps_rad_s", "zeta1_rad", "zeta2_rad", "pitch_m"});
+                   "road_cv_Nms_rad", "road_ca_Nms2_rad2", "road_w_eps_rad_s", "zeta1_rad", "zeta2_rad", "pitch_m",
+                   "driven_clamp_N", "radial_mass_kg", "radial_damping_Ns_m", "radial_travel_m", "radial_stop_N_m"});
       p.r1_m = number(*t, pre, "r1_m", p.r1_m);
       p.r2_m = number(*t, pre, "r2_m", p.r2_m);
       p.beta0_rad = number(*t, pre, "beta0_deg", p.beta0_rad / kDegToRad) * kDegToRad;
@@ -254,11 +256,17 @@ class Reader {
       p.zeta1_rad = number(*t, pre, "zeta1_rad", p.zeta1_rad);
       p.zeta2_rad = number(*t, pre, "zeta2_rad", p.zeta2_rad);
       p.pitch_m = number(*t, pre, "pitch_m", p.pitch_m);
+      p.driven_clamp_N = number(*t, pre, "driven_clamp_N", p.driven_clamp_N);
+      p.radial_mass_kg = number(*t, pre, "radial_mass_kg", p.radial_mass_kg);
+      p.radial_damping_Ns_m = number(*t, pre, "radial_damping_Ns_m", p.radial_damping_Ns_m);
+      p.radial_travel_m = number(*t, pre, "radial_travel_m", p.radial_travel_m);
+      p.radial_stop_N_m = number(*t, pre, "radial_stop_N_m", p.radial_stop_N_m);
     }
     if (const toml::table* t = table(root_, "", "friction")) friction(*t, p.friction);
     if (const toml::table* t = table(root_, "", "initial")) {
       const std::string pre = "initial.";
-      check_known(*t, pre, {"omega1_rad_s", "omega2_rad_s", "x1_m", "xd1_m_s", "x2_m", "xd2_m_s", "phase_rad"});
+      check_known(*t, pre, {"omega1_rad_s", "omega2_rad_s", "x1_m", "xd1_m_s", "x2_m", "xd2_m_s", "phase_rad",
+                            "radius_offset_m"});
       cvt::RomInitial& x = s.initial;
       x.omega1_rad_s = number(*t, pre, "omega1_rad_s", x.omega1_rad_s);
       x.omega2_rad_s = number(*t, pre, "omega2_rad_s", x.omega2_rad_s);
@@ -267,6 +275,7 @@ class Reader {
       x.x2_m = number(*t, pre, "x2_m", x.x2_m);
       x.xd2_m_s = number(*t, pre, "xd2_m_s", x.xd2_m_s);
       x.phase_rad = number(*t, pre, "phase_rad", x.phase_rad);
+      x.radius_offset_m = number(*t, pre, "radius_offset_m", x.radius_offset_m);
     }
     if (const toml::table* t = table(root_, "", "inputs")) {
       check_known(*t, "inputs.", {"tau_in", "tau_load", "clamp"});

@@ -2,7 +2,7 @@
 // The real-time reduced-order CVT plant (docs/rom.md): the seed's 2-DOF
 // stick-slip oscillator (Eq. 8/9) made into a drive train.
 //
-//   state  [w1 w2 x1 xd1 x2 xd2 | Fh delta deltadot (axial) | psi (polygon)]
+//   state  [w1 w2 x1 xd1 x2 xd2 | Fh delta deltadot (axial) | rho rhodot (wedging) | psi (polygon)]
 //   v1 = r1e w1, v_c = r2 w2, v_rel_i = (v_c + xd_i) - v1          docs/rom.md#kinematics
 //   F_i = -mu(|v_rel_i|) s(v_rel_i) N_i,  N_i = F_ax / cos(beta_i)   docs/rom.md#contact
 //   J1 w1' = tau_in - r1e (F1 + F2)                                  docs/rom.md#equations-of-motion
@@ -53,13 +53,16 @@ struct RomLayout {
   static constexpr bool kRoad = (F & rom_feature::road_load) != 0;
   static constexpr bool kDeform = (F & rom_feature::deformation) != 0;
   static constexpr bool kPolygon = (F & rom_feature::polygon) != 0;
+  static constexpr bool kWedge = (F & rom_feature::wedging) != 0;
+  static_assert(!kWedge || kAxial, "the wedging feature needs the axial feature (docs/rom.md#wedging)");
   static constexpr int kW1 = 0, kW2 = 1, kX1 = 2, kV1 = 3, kX2 = 4, kV2 = 5;
   static constexpr int kFh = 6;                       // valid if kAxial
   static constexpr int kDelta = 7, kDeltaDot = 8;     // valid if kAxial
-  static constexpr int kPsi = kAxial ? 9 : 6;         // valid if kPolygon
-  static constexpr int kStates = 6 + (kAxial ? 3 : 0) + (kPolygon ? 1 : 0);
-  static constexpr std::uint32_t kPositionMask =
-      (1u << kX1) | (1u << kX2) | (kAxial ? (1u << kDelta) : 0u) | (kPolygon ? (1u << kPsi) : 0u);
+  static constexpr int kRho = 9, kRhoDot = 10;        // valid if kWedge
+  static constexpr int kPsi = 6 + (kAxial ? 3 : 0) + (kWedge ? 2 : 0);  // valid if kPolygon
+  static constexpr int kStates = kPsi + (kPolygon ? 1 : 0);
+  static constexpr std::uint32_t kPositionMask = (1u << kX1) | (1u << kX2) | (kAxial ? (1u << kDelta) : 0u) |
+                                                 (kWedge ? (1u << kRho) : 0u) | (kPolygon ? (1u << kPsi) : 0u);
 };
 
 // Everything a frame reports (docs/rom.md#outputs). Forces in N, torques in N m.
@@ -67,12 +70,14 @@ template <class T>
 struct RomOutputs {
   T omega1_rad_s{}, omega2_rad_s{};
   T speed_ratio{};        // w1 / w2 (0 while |w2| < 1e-3 rad/s)
-  T geometric_ratio{};    // r2 / r1
+  T geometric_ratio{};    // r2 / r1 (varies with wedging)
+  T radius1_m{}, radius2_m{};  // pitch radii (constant unless wedging)
   T slip{};               // (v1 - v_c) / v1 (0 while |v1| < 1e-3 m/s)
   T clamp_force_N{};      // F_ax acting on the lumps
   T torque_transmitted_Nm{};  // r1e (F1 + F2): friction torque on the driver
   T tau_in_Nm{}, tau_load_Nm{};  // as applied (held pulleys report the holding torque)
-  T friction1_N{}, friction2_N{};
+  T friction1_N{}, friction2_N{};            // tangential friction on the lumps
+  T radial_friction1_N{}, radial_friction2_N{};  // along the flank, radial direction (wedging; seed Eq. 7 F_r)
   T v_rel1_m_s{}, v_rel2_m_s{};
   bool stick1 = false, stick2 = false;
 };
@@ -95,6 +100,9 @@ class CvtRom {
   static constexpr std::uint32_t kPositionMask = L::kPositionMask;
   using Layout = L;
   using U = RomUnits<T>;
+  // The radial stiffness and friction slopes of wedging have no fixed-point
+  // scaling yet (docs/rom.md#wedging).
+  static_assert(!L::kWedge || !U::kScaled, "the wedging feature runs in floating point only");
   using State = Eigen::Matrix<T, kStates, 1>;
   using Jacobian = Eigen::Matrix<T, kStates, kStates>;
   // Energy bookkeeping runs in float for fixed point (energies of 1e5 J do
@@ -151,6 +159,38 @@ class CvtRom {
       // docs/rom.md#polygon: half the angle one link subtends on the driver.
       c_.alpha = T(asin_small(p.pitch_m / (2.0 * p.r1_m)));
     }
+    if constexpr (L::kWedge) {
+      // docs/rom.md#wedging: r2(rho) from chain length conservation, as the
+      // cubic through the exact solutions at rho = 0, +-e, +-2e (e = travel/2).
+      const double e = 0.5 * p.radial_travel_m;
+      const double fp1 = driven_radius_exact(p, e), fm1 = driven_radius_exact(p, -e);
+      const double fp2 = driven_radius_exact(p, 2 * e), fm2 = driven_radius_exact(p, -2 * e);
+      const double f0 = p.r2_m;
+      const double a1 = (8.0 * (fp1 - fm1) - (fp2 - fm2)) / (12.0 * e);
+      const double a2 = (16.0 * (fp1 + fm1) - (fp2 + fm2) - 30.0 * f0) / (24.0 * e * e);
+      const double a3 = ((fp2 - fm2) - 2.0 * (fp1 - fm1)) / (12.0 * e * e * e);
+      const double tb = dm::sin(p.beta0_rad) / dm::cos(p.beta0_rad);
+      c_.a1 = T(a1);
+      c_.a2 = T(a2);
+      c_.a3 = T(a3);
+      c_.two_tan_b0 = T(2.0 * tb);
+      c_.tan1 = T(dm::sin(b1) / dm::cos(b1));
+      c_.tan2 = T(dm::sin(b2) / dm::cos(b2));
+      c_.inv_mr = T(1.0 / p.radial_mass_kg);
+      c_.cr = T(p.radial_damping_Ns_m);
+      c_.driven_force = T(2.0 * tb * p.driven_clamp_N);
+      c_.travel = T(p.radial_travel_m);
+      c_.k_stop = T(p.radial_stop_N_m);
+      a_.k_stop = Acc(p.radial_stop_N_m);
+      c_.q0 = friction_characteristic_slope(c_.friction, T(0));
+      a_.mr = Acc(p.radial_mass_kg);
+      a_.cr = Acc(p.radial_damping_Ns_m);
+      a_.a1 = Acc(a1);
+      a_.a2 = Acc(a2);
+      a_.a3 = Acc(a3);
+      a_.two_tan_b0 = Acc(2.0 * tb);
+      a_.driven_force = Acc(2.0 * tb * p.driven_clamp_N);
+    }
     // Accounting copies (docs/rom.md#energy-balance).
     a_.J1 = Acc(p.J1_kgm2);
     a_.J2 = Acc(p.J2_kgm2);
@@ -190,6 +230,12 @@ class CvtRom {
       x(L::kFh) = fh;
       x(L::kDelta) = T(to_double(fh) / p_.K_ax_N_m / U::length_m);
       x(L::kDeltaDot) = T(0);
+    }
+    if constexpr (L::kWedge) {
+      // Bolt compression delta - 2 tan(beta0) rho at its static value.
+      x(L::kRho) = T(x0.radius_offset_m);
+      x(L::kDelta) += c_.two_tan_b0 * x(L::kRho);
+      x(L::kRhoDot) = T(0);
     }
     if constexpr (L::kPolygon) x(L::kPsi) = T(x0.phase_rad);
     return x;
@@ -232,7 +278,10 @@ class CvtRom {
   template <class S>
   S clamp_force(const Eigen::Matrix<S, kStates, 1>& x) const {
     if constexpr (L::kAxial) {
-      const S d = x(L::kDelta);
+      // With wedging the chain's radial position rho changes the groove width
+      // at the links: compression = delta - 2 tan(beta0) rho (docs/rom.md#wedging).
+      S d = x(L::kDelta);
+      if constexpr (L::kWedge) d = d - S(c_.two_tan_b0) * x(L::kRho);
       return d > S(T(0)) ? S(c_.K_ax) * d : S(T(0));
     } else {
       (void)x;
@@ -240,12 +289,73 @@ class CvtRom {
     }
   }
 
+  // Pitch radii (docs/rom.md#wedging): set-up values, or r1 + rho and
+  // r2 + a1 rho + a2 rho^2 + a3 rho^3 with wedging.
+  template <class S>
+  S pitch_radius1(const Eigen::Matrix<S, kStates, 1>& x) const {
+    if constexpr (L::kWedge) return S(c_.r1) + x(L::kRho);
+    (void)x;
+    return S(c_.r1);
+  }
+  template <class S>
+  S pitch_radius2(const Eigen::Matrix<S, kStates, 1>& x) const {
+    if constexpr (L::kWedge) return S(c_.r2) + driven_radius_change(x(L::kRho));
+    (void)x;
+    return S(c_.r2);
+  }
+  // r2(rho) - r2 and kappa(rho) = -dr2/drho (theta1/theta2 to 1e-2).
+  template <class S>
+  S driven_radius_change(const S& rho) const {
+    return rho * (S(c_.a1) + rho * (S(c_.a2) + rho * S(c_.a3)));
+  }
+  template <class S>
+  S ratio_slope(const S& rho) const {
+    return -(S(c_.a1) + rho * (S(c_.a2 + c_.a2) + rho * S(T(3) * c_.a3)));
+  }
+
   // Effective driver radius r1e: r1, or r1 cos(psi) with chordal action.
   template <class S>
   S driver_radius(const Eigen::Matrix<S, kStates, 1>& x) const {
-    if constexpr (L::kPolygon) return S(c_.r1) * dm::cos(x(L::kPsi));
+    if constexpr (L::kPolygon) return pitch_radius1(x) * dm::cos(x(L::kPsi));
+    return pitch_radius1(x);
+  }
+
+  // False once the chain is through an end stop by another full travel: the
+  // stop stiffness cannot hold what drives it (wedging only; the simulator
+  // reports it as a fault, docs/rom.md#wedging).
+  bool radius_in_range(const State& x) const {
+    if constexpr (L::kWedge) {
+      const T lim = c_.travel + c_.travel;
+      return x(L::kRho) <= lim && x(L::kRho) >= -lim;
+    }
     (void)x;
-    return S(c_.r1);
+    return true;
+  }
+
+  // Penetration of the ratio end stops [m]: > 0 past +travel, < 0 past -travel.
+  template <class S>
+  S stop_penetration(const S& rho) const {
+    const S tr(c_.travel);
+    if (rho > tr) return rho - tr;
+    if (rho < -tr) return rho + tr;
+    return S(T(0));
+  }
+
+  // Contact forces on the lumps with wedging (seed Eq. 7, docs/rom.md#wedging):
+  // the friction force opposes the slip velocity (v_t, g_r) in the flank
+  // plane, g_r = rhodot / cos(beta_i), and its radial part F_r changes the
+  // normal force, N = F_r tan(beta) + F_ax / cos(beta), F_r = -(phi/|v|) g_r N.
+  template <class S>
+  struct WedgeContact {
+    S F1, F2;    // tangential [N]
+    S Fr1, Fr2;  // radial, along the flank [N]
+  };
+  template <class S>
+  WedgeContact<S> wedge_contact(const S& vt1, const S& vt2, const S& rhod, const S& fax) const {
+    WedgeContact<S> c;
+    lump_contact(vt1, rhod * S(c_.inv_cos1), fax * S(c_.inv_cos1), S(c_.tan1), c.F1, c.Fr1);
+    lump_contact(vt2, rhod * S(c_.inv_cos2), fax * S(c_.inv_cos2), S(c_.tan2), c.F2, c.Fr2);
+    return c;
   }
 
   // Load torque at the driven shaft (docs/rom.md#road-load).
@@ -260,6 +370,10 @@ class CvtRom {
 
   template <class S>
   void derivative(const Eigen::Matrix<S, kStates, 1>& x, Eigen::Matrix<S, kStates, 1>& dxdt) const {
+    if constexpr (L::kWedge) {
+      derivative_wedge(x, dxdt);
+      return;
+    }
     const S w1 = x(L::kW1), w2 = x(L::kW2);
     const S x1 = x(L::kX1), xd1 = x(L::kV1), x2 = x(L::kX2), xd2 = x(L::kV2);
     const S r1e = driver_radius(x);
@@ -297,7 +411,12 @@ class CvtRom {
   // Analytic Jacobian (docs/rom.md#jacobian). Held pulleys get zero rows AND
   // columns: their speed never changes, so the columns multiply a zero
   // increment, and leaving them out keeps the LU pivots those of seed Eq. 9.
+  // With wedging, dual numbers (docs/rom.md#wedging).
   void jacobian(const State& x, Jacobian& J) const {
+    if constexpr (L::kWedge) {
+      jacobian_by_duals(*this, x, J);
+      return;
+    }
     J.setZero();
     const T w1 = x(L::kW1), w2 = x(L::kW2);
     const T xd1 = x(L::kV1), xd2 = x(L::kV2);
@@ -397,24 +516,35 @@ class CvtRom {
     RomOutputs<T> o;
     const T w1 = x(L::kW1), w2 = x(L::kW2);
     const T r1e = driver_radius(x);
+    const T r2 = pitch_radius2(x);
     const T v1 = r1e * w1;
-    const T vc = c_.r2 * w2;
+    const T vc = r2 * w2;
     const T fax = clamp_force(x);
     o.omega1_rad_s = w1;
     o.omega2_rad_s = w2;
-    o.geometric_ratio = c_.r2 / c_.r1;
+    o.radius1_m = pitch_radius1(x);
+    o.radius2_m = r2;
+    o.geometric_ratio = r2 / o.radius1_m;
     const T w_tiny = T(1e-3);
     o.speed_ratio = dm::abs(w2) < w_tiny ? T(0) : w1 / w2;
     o.slip = dm::abs(v1) < w_tiny ? T(0) : (v1 - vc) / v1;
     o.clamp_force_N = fax;
     o.v_rel1_m_s = (vc + x(L::kV1)) - v1;
     o.v_rel2_m_s = (vc + x(L::kV2)) - v1;
-    o.friction1_N = -friction_characteristic(c_.friction, o.v_rel1_m_s) * (fax * c_.inv_cos1);
-    o.friction2_N = -friction_characteristic(c_.friction, o.v_rel2_m_s) * (fax * c_.inv_cos2);
+    if constexpr (L::kWedge) {
+      const WedgeContact<T> c = wedge_contact(o.v_rel1_m_s, o.v_rel2_m_s, x(L::kRhoDot), fax);
+      o.friction1_N = c.F1;
+      o.friction2_N = c.F2;
+      o.radial_friction1_N = c.Fr1;
+      o.radial_friction2_N = c.Fr2;
+    } else {
+      o.friction1_N = -friction_characteristic(c_.friction, o.v_rel1_m_s) * (fax * c_.inv_cos1);
+      o.friction2_N = -friction_characteristic(c_.friction, o.v_rel2_m_s) * (fax * c_.inv_cos2);
+    }
     o.torque_transmitted_Nm = r1e * (o.friction1_N + o.friction2_N);
     o.tau_in_Nm = c_.hold1 ? o.torque_transmitted_Nm : inputs.tau_in_Nm;
     const T strand = c_.k1 * x(L::kX1) + c_.c1 * x(L::kV1) + (c_.k1 * x(L::kX2) + c_.c1 * x(L::kV2));
-    o.tau_load_Nm = c_.hold2 ? c_.r2 * strand : load_torque(w2);
+    o.tau_load_Nm = c_.hold2 ? r2 * strand : load_torque(w2);
     o.stick1 = dm::abs(o.v_rel1_m_s) < c_.stick_speed;
     o.stick2 = dm::abs(o.v_rel2_m_s) < c_.stick_speed;
     return o;
@@ -431,14 +561,30 @@ class CvtRom {
       if constexpr (L::kAxial) x[L::kDelta] *= Acc(U::length_m);
     }
     const Acc w1 = x[L::kW1], w2 = x[L::kW2];
-    const Acc vc = a_.r2 * w2;
+    Acc r2 = a_.r2;
+    Acc dr2 = Acc(0);
+    if constexpr (L::kWedge) {
+      const Acc rho = x[L::kRho];
+      dr2 = rho * (a_.a1 + rho * (a_.a2 + rho * a_.a3));
+      r2 += dr2;
+    }
+    const Acc vc = r2 * w2;
     const Acc u1 = vc + x[L::kV1], u2 = vc + x[L::kV2];
     const Acc dx = x[L::kX1] - x[L::kX2];
     Acc e = Acc(0.5) * (a_.J1 * w1 * w1 + a_.J2 * w2 * w2 + a_.m * (u1 * u1 + u2 * u2) +
                         a_.k1 * (x[L::kX1] * x[L::kX1] + x[L::kX2] * x[L::kX2]) + a_.k2 * dx * dx);
     if constexpr (L::kAxial) {
-      const Acc d = x[L::kDelta] > Acc(0) ? x[L::kDelta] : Acc(0);
+      Acc b = x[L::kDelta];
+      if constexpr (L::kWedge) b -= a_.two_tan_b0 * x[L::kRho];
+      const Acc d = b > Acc(0) ? b : Acc(0);
       e += Acc(0.5) * (a_.ms * x[L::kDeltaDot] * x[L::kDeltaDot] + a_.K_ax * d * d);
+    }
+    if constexpr (L::kWedge) {
+      // Radial kinetic energy and the potential of the (constant) driven
+      // clamping force through chain length conservation.
+      const Acc pen = to_acc(stop_penetration(xs(L::kRho)));
+      e += Acc(0.5) * a_.mr * x[L::kRhoDot] * x[L::kRhoDot] - a_.driven_force * dr2 +
+           Acc(0.5) * a_.k_stop * pen * pen;
     }
     return e;
   }
@@ -458,6 +604,13 @@ class CvtRom {
       pw.actuator_W = x[L::kFh] * x[L::kDeltaDot];
       pw.damping_loss_W += a_.cs * x[L::kDeltaDot] * x[L::kDeltaDot];
     }
+    if constexpr (L::kWedge) {
+      // Radial slip along the flank is rhodot / cos(beta_i).
+      const Acc rd = x[L::kRhoDot];
+      pw.friction_loss_W -= to_acc(o.radial_friction1_N) * rd * to_acc(c_.inv_cos1) +
+                            to_acc(o.radial_friction2_N) * rd * to_acc(c_.inv_cos2);
+      pw.damping_loss_W += a_.cr * rd * rd;
+    }
     return pw;
   }
 
@@ -467,6 +620,63 @@ class CvtRom {
   }
 
  private:
+  // One lump of wedge_contact: tangential slip vt, radial slip along the
+  // flank gr, N0 = F_ax / cos(beta_i), tb = tan(beta_i).
+  template <class S>
+  void lump_contact(const S& vt, const S& gr, const S& N0, const S& tb, S& F, S& Fr) const {
+    const S s2 = vt * vt + gr * gr;
+    // phi(|v|)/|v|; its limit phi'(0) at |v| = 0, where sqrt has no derivative.
+    S q(c_.q0);
+    if (s2 > S(T(1e-24))) {
+      const S speed = dm::sqrt(s2);
+      q = friction_characteristic(c_.friction, speed) / speed;
+    }
+    // seed Eq. 7 solved for N: N (1 + tan(beta) q gr) = F_ax / cos(beta).
+    // 1 + tan(beta) q gr >= 1 - mu_max tan(beta) > 0 (validate_scene).
+    const S N = N0 / (S(T(1)) + tb * q * gr);
+    F = -q * vt * N;
+    Fr = -q * gr * N;
+  }
+
+  // derivative() with wedging (docs/rom.md#wedging): radii follow rho, the
+  // chain frame accelerates with d(r2 w2)/dt, the friction is a vector.
+  template <class S>
+  void derivative_wedge(const Eigen::Matrix<S, kStates, 1>& x, Eigen::Matrix<S, kStates, 1>& dxdt) const {
+    const S w1 = x(L::kW1), w2 = x(L::kW2);
+    const S x1 = x(L::kX1), xd1 = x(L::kV1), x2 = x(L::kX2), xd2 = x(L::kV2);
+    const S rhod = x(L::kRhoDot);
+    const S r1e = driver_radius(x);
+    const S r2 = pitch_radius2(x);
+    const S v1 = r1e * w1;
+    const S vc = r2 * w2;
+    const S fax = clamp_force(x);
+    const WedgeContact<S> c = wedge_contact(S((vc + xd1) - v1), S((vc + xd2) - v1), rhod, fax);
+    const S mid = S(c_.k2) * (x1 - x2) + S(c_.c2) * (xd1 - xd2);
+    const S strand1 = S(c_.k1) * x1 + S(c_.c1) * xd1;
+    const S strand2 = S(c_.k1) * x2 + S(c_.c1) * xd2;
+    const S w1dot = c_.hold1 ? S(T(0)) : (S(inputs.tau_in_Nm) - r1e * (c.F1 + c.F2)) * S(c_.inv_J1);
+    const S w2dot = c_.hold2 ? S(T(0)) : (r2 * (strand1 + strand2) - load_torque(w2)) * S(c_.inv_J2);
+    // d(v_c)/dt = r2 w2' + r2' w2, r2' = -kappa(rho) rhodot.
+    const S kappa = ratio_slope(x(L::kRho));
+    const S chain_acc = r2 * w2dot - kappa * rhod * w2;
+    dxdt(L::kW1) = w1dot;
+    dxdt(L::kW2) = w2dot;
+    dxdt(L::kX1) = xd1;
+    dxdt(L::kV1) = (c.F1 - strand1 - mid) * S(c_.inv_m) - chain_acc;
+    dxdt(L::kX2) = xd2;
+    dxdt(L::kV2) = (c.F2 - strand2 + mid) * S(c_.inv_m) - chain_acc;
+    const S fh = x(L::kFh), dd = x(L::kDeltaDot);
+    dxdt(L::kFh) = (S(saturated_command()) - fh) * S(c_.inv_tau_h);
+    dxdt(L::kDelta) = dd;
+    dxdt(L::kDeltaDot) = (fh - fax - S(c_.cs) * dd) * S(c_.inv_ms);
+    // m_r rho'' = 2 tan(beta0) F_b + sum F_r,i / cos(beta_i) - kappa(rho) 2 tan(beta0) F_ax2 - c_r rho' - F_stop
+    dxdt(L::kRho) = rhod;
+    dxdt(L::kRhoDot) = (S(c_.two_tan_b0) * fax + c.Fr1 * S(c_.inv_cos1) + c.Fr2 * S(c_.inv_cos2) -
+                        kappa * S(c_.driven_force) - S(c_.cr) * rhod - S(c_.k_stop) * stop_penetration(x(L::kRho))) *
+                       S(c_.inv_mr);
+    if constexpr (L::kPolygon) dxdt(L::kPsi) = w1;
+  }
+
   // Set-up helpers in double (never per step).
   static double log_pos(double v) {
     // ln(v) for v in (0, 1e6] by Newton on exp: set-up only, avoids <cmath>
@@ -474,6 +684,20 @@ class CvtRom {
     double y = 0.0;
     for (int i = 0; i < 60; ++i) y -= 1.0 - v / dm::exp(y);
     return y;
+  }
+  // Driven pitch radius that keeps the chain length of the set-up radii when
+  // the driver radius is r1 + rho (set-up only): Newton on
+  // L = r1 theta1 + r2 theta2 + 2 sqrt(C^2 - (r2 - r1)^2), dL/dr2 = theta2.
+  static double driven_radius_exact(const RomParams& p, double rho) {
+    const double pi = 3.14159265358979323846, C = p.center_distance_m;
+    auto length = [&](double a, double b) {
+      const double s = asin_small((b - a) / C);
+      return a * (pi - 2.0 * s) + b * (pi + 2.0 * s) + 2.0 * dm::sqrt(C * C - (b - a) * (b - a));
+    };
+    const double L0 = length(p.r1_m, p.r2_m), a = p.r1_m + rho;
+    double b = p.r2_m;
+    for (int i = 0; i < 30; ++i) b -= (length(a, b) - L0) / (pi + 2.0 * asin_small((b - a) / C));
+    return b;
   }
   static double asin_small(double s) {
     // asin by Newton on sin, |s| < 0.9 (set-up only).
@@ -491,9 +715,11 @@ class CvtRom {
     T inv_tau_h{}, clamp_max{}, inv_ms{}, cs{}, K_ax{};
     T T0{}, cv{}, ca{}, inv_w_eps{};
     T alpha{};
+    T a1{}, a2{}, a3{}, two_tan_b0{}, tan1{}, tan2{}, inv_mr{}, cr{}, driven_force{}, travel{}, k_stop{}, q0{};
   };
   struct AccConsts {
     Acc J1{}, J2{}, m{}, k1{}, k2{}, c1{}, c2{}, r2{}, ms{}, cs{}, K_ax{};
+    Acc mr{}, cr{}, a1{}, a2{}, a3{}, two_tan_b0{}, driven_force{}, k_stop{};
   };
   RomParams p_;
   Consts c_;

@@ -15,7 +15,10 @@ inline constexpr std::uint32_t axial = 1u << 0;        // actuator lag + sheave 
 inline constexpr std::uint32_t road_load = 1u << 1;    // tau_load += T0 tanh(w2/w_eps) + c_v w2 + c_a w2|w2|
 inline constexpr std::uint32_t deformation = 1u << 2;  // seed Eq. 3-4 flank angle per lump
 inline constexpr std::uint32_t polygon = 1u << 3;      // chordal action of the driver wrap (needs phi1 phase)
-inline constexpr std::uint32_t all = axial | road_load | deformation | polygon;
+inline constexpr std::uint32_t wedging = 1u << 4;      // radial chain DOF, seed Eq. 7, variable ratio (needs axial)
+// Every feature the fixed-point plant supports (wedging is floating point only).
+inline constexpr std::uint32_t basic = axial | road_load | deformation | polygon;
+inline constexpr std::uint32_t all = basic | wedging;
 }  // namespace rom_feature
 
 struct RomParams {
@@ -60,6 +63,14 @@ struct RomParams {
 
   // feature: polygon (docs/rom.md#polygon)
   double pitch_m = 0.03;               // link length L
+
+  // feature: wedging (docs/rom.md#wedging). Needs axial: the bolt force then
+  // also depends on the chain's radial position.
+  double driven_clamp_N = 3636.8353493461495;  // constant driven clamping F_ax2 (holds the ratio at 3.3 kN)
+  double radial_mass_kg = 2.0166389766945220;  // (n_w1 + kappa^2 n_w2) x 0.1125 kg
+  double radial_damping_Ns_m = 93.8;           // zeta = 0.05 of the chain-on-bolt mode (74 Hz)
+  double radial_travel_m = 0.025;              // |r1 - r1_m| at the ratio end stops (pulley hub / rim)
+  double radial_stop_N_m = 1.0e7;              // end-stop contact stiffness; 2x the travel is a fault
 };
 
 // Plant inputs, held constant over a frame (zero-order hold).
@@ -75,6 +86,7 @@ struct RomInitial {
   double omega1_rad_s = 0, omega2_rad_s = 0;
   double x1_m = 0, xd1_m_s = 0, x2_m = 0, xd2_m_s = 0;
   double phase_rad = 0;  // polygon: link-passing phase psi in [-alpha, alpha)
+  double radius_offset_m = 0;  // wedging: r1 - r1_m at the start (r2 follows, docs/rom.md#wedging)
   // axial: actuator force and bolt compression start at the static
   // equilibrium of the first frame's command (F_h = F_cmd, delta = F_cmd/K_ax).
 };

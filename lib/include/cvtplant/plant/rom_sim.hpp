@@ -19,6 +19,7 @@ enum class RomFault : std::uint8_t {
   state_non_finite,   // the step produced NaN/inf (floating point)
   state_saturated,    // a state hit the rail of the fixed-point range
   energy_growth,      // stored energy exceeds what the inputs supplied (docs/rom.md#watchdog)
+  radius_out_of_range,  // wedging: the chain left the pulleys' radial travel (docs/rom.md#wedging)
 };
 
 inline constexpr const char* rom_fault_name(RomFault f) {
@@ -27,6 +28,7 @@ inline constexpr const char* rom_fault_name(RomFault f) {
     case RomFault::input_non_finite: return "input-non-finite";
     case RomFault::state_non_finite: return "state-non-finite";
     case RomFault::state_saturated: return "state-saturated";
+    case RomFault::radius_out_of_range: return "radius-out-of-range";
     case RomFault::energy_growth: return "energy-growth";
   }
   return "?";
@@ -104,7 +106,9 @@ class RomSimulator {
     for (int i = 0; i < n; ++i) {
       rom_step(cfg_.method, plant_, x_, h_);
       plant_.wrap(x_);
-      if (const RomFault f = check_state(x_); f != RomFault::none) {
+      RomFault f = check_state(x_);
+      if (f == RomFault::none && !plant_.radius_in_range(x_)) f = RomFault::radius_out_of_range;
+      if (f != RomFault::none) {
         x_ = x_prev;
         ledger_ = ledger_prev;
         fault_ = f;

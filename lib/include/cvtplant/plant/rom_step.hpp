@@ -16,6 +16,7 @@
 #include <cstdint>
 
 #include "cvtplant/integrate/method.hpp"
+#include "cvtplant/integrate/rosenbrock.hpp"
 #include "cvtplant/plant/cvt_rom.hpp"
 
 namespace cvt {
@@ -141,8 +142,9 @@ class RomWSolver {
 
 // One step of `m` on the plant: ROS2 and linearly implicit Euler through
 // RomWSolver, the explicit methods through the generic integrators. The
-// dense Rosenbrock code is never instantiated here: with 48 plant types in
-// the CLI, its Eigen LUs were most of the compile time.
+// dense Rosenbrock code is instantiated only for the wedging plants (whose
+// axial rows couple to the rest): with 64 plant types in the CLI, its Eigen
+// LUs were most of the compile time.
 template <class T, std::uint32_t F>
 void rom_step(Method m, const CvtRom<T, F>& sys, typename CvtRom<T, F>::State& x, const T& h) {
   using Plant = CvtRom<T, F>;
@@ -153,6 +155,13 @@ void rom_step(Method m, const CvtRom<T, F>& sys, typename CvtRom<T, F>::State& x
     case Method::rk4: step_rk4(sys, x, h); return;
     case Method::linear_implicit_euler:
     case Method::ros2: break;
+  }
+  if constexpr (RomLayout<F>::kWedge) {
+    // Wedging couples the axial rows to the radial and tangential ones, so
+    // the block elimination does not apply: dense LU (docs/rom.md#wedging).
+    if (m == Method::linear_implicit_euler) step_linear_implicit_euler(sys, x, h);
+    else step_ros2(sys, x, h);
+    return;
   }
   typename Plant::Jacobian J;
   sys.jacobian(x, J);

@@ -206,6 +206,26 @@ inline SceneIssue validate_scene(const Scene& s) {
     if (!(fin(p.road_ca_Nms2_rad2) && p.road_ca_Nms2_rad2 >= 0)) return bad("road_ca_Nms2_rad2", "must be >= 0");
     if (!(fin(p.road_w_eps_rad_s) && p.road_w_eps_rad_s > 0)) return bad("road_w_eps_rad_s", "must be > 0");
   }
+  if (s.features & rom_feature::wedging) {
+    if (!(s.features & rom_feature::axial)) return bad("features", "wedging needs the axial feature");
+    if (s.scalar == ScalarKind::q16_16) return bad("scalar", "wedging runs in double or float only");
+    if (!(fin(p.driven_clamp_N) && p.driven_clamp_N > 0)) return bad("driven_clamp_N", "must be > 0");
+    if (!(fin(p.radial_mass_kg) && p.radial_mass_kg > 0)) return bad("radial_mass_kg", "must be > 0");
+    if (!(fin(p.radial_damping_Ns_m) && p.radial_damping_Ns_m >= 0)) return bad("radial_damping_Ns_m", "must be >= 0");
+    if (!(fin(p.radial_travel_m) && p.radial_travel_m > 0 && 2 * p.radial_travel_m < p.r1_m &&
+          2 * p.radial_travel_m < p.r2_m))
+      return bad("radial_travel_m", "must be in (0, min(r1, r2)/2)");
+    if (!(fin(p.radial_stop_N_m) && p.radial_stop_N_m > 0)) return bad("radial_stop_N_m", "must be > 0");
+    // Eq. 7 divides by 1 + tan(beta) mu g_r/|v| >= 1 - mu_max tan(beta): at
+    // mu_max tan(beta) >= 1 the chain self-locks in the groove.
+    const double mu_max = f.law == FrictionLaw::case2 ? f.mu0 * f.sigma : f.mu0;
+    const double beta_max = p.beta0_rad + 0.01;  // deformation adds < 3e-4 rad
+    if (!(mu_max * dm::sin(beta_max) / dm::cos(beta_max) < 0.9))
+      return bad("beta0_deg", "wedging needs mu_max tan(beta0) < 0.9 (self-locking groove)");
+    if (!(fin(s.initial.radius_offset_m) && s.initial.radius_offset_m > -p.radial_travel_m &&
+          s.initial.radius_offset_m < p.radial_travel_m))
+      return bad("initial", "radius_offset_m must be within the radial travel");
+  }
   if (s.features & rom_feature::polygon) {
     if (!(fin(p.pitch_m) && p.pitch_m > 0 && p.pitch_m < 1.5 * p.r1_m)) return bad("pitch_m", "must be in (0, 1.5 r1)");
   }

@@ -1,0 +1,273 @@
+// The wedging feature of the reduced-order plant (docs/rom.md#wedging): the
+// chain's radial degree of freedom on the driver, seed Eq. 7, the ratio from
+// chain length conservation, end stops.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "cvtplant/plant/rom_sim.hpp"
+#include "cvtplant/scene/builtin_scenes.hpp"
+#include "cvtplant/scene/scene_runner.hpp"
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+namespace f = cvt::rom_feature;
+constexpr std::uint32_t kWedge = f::axial | f::wedging;
+constexpr std::uint32_t kWedgeRoad = f::axial | f::road_load | f::wedging;
+using Rom = cvt::CvtRom<double, kWedge>;
+using L = cvt::RomLayout<kWedge>;
+
+// Exact driven radius for driver radius r1 + rho at the chain length of the
+// set-up radii (the test's own Newton, in <cmath>).
+double driven_radius_by_length(const cvt::RomParams& p, double rho) {
+  const double C = p.center_distance_m;
+  auto length = [&](double a, double b) {
+    const double s = std::asin((b - a) / C);
+    return a * (kPi - 2 * s) + b * (kPi + 2 * s) + 2 * std::sqrt(C * C - (b - a) * (b - a));
+  };
+  const double L0 = length(p.r1_m, p.r2_m);
+  double b = p.r2_m;
+  for (int i = 0; i < 60; ++i) {
+    const double h = 1e-7;
+    b -= (length(p.r1_m + rho, b) - L0) / ((length(p.r1_m + rho, b + h) - length(p.r1_m + rho, b - h)) / (2 * h));
+  }
+  return b;
+}
+
+// A driving state with radial motion: driver 150 rad/s, lumps slipping a
+// little, chain moving inward at 2 cm/s.
+Rom::State moving_state(const Rom& rom) {
+  cvt::RomInitial x0;
+  x0.omega1_rad_s = 150.0;
+  x0.omega2_rad_s = 99.95;
+  x0.x1_m = 0.01;
+  x0.x2_m = 0.012;
+  x0.radius_offset_m = 0.004;
+  Rom::State x = rom.initial_state(x0);
+  x(L::kRhoDot) = -0.02;
+  x(L::kDeltaDot) = 0.001;
+  return x;
+}
+
+cvt::Scene ratio_scene(double clamp_before_N, double clamp_after_N) {
+  cvt::Scene s = *cvt::find_builtin_scene("tip-in");
+  s.features = kWedgeRoad;
+  s.tau_in = cvt::constant_profile(60.0);
+  s.clamp = cvt::step_profile(clamp_before_N, clamp_after_N, 1.0);
+  s.t_end_s = 5.0;
+  return s;
+}
+
+struct RunEnd {
+  cvt::RomFault fault;
+  double rho_m, r1_m, r2_m, residual_rel, max_pen_m;
+};
+
+template <class T>
+RunEnd run(const cvt::Scene& s) {
+  RunEnd e{};
+  double max_rho = 0;
+  e.fault = cvt::run_scene<T, kWedgeRoad>(s, cvt::sim_config_of(s), [&](long, double, const auto& sim) {
+    const auto xs = sim.state_si();
+    max_rho = std::max(max_rho, std::fabs(xs(cvt::RomLayout<kWedgeRoad>::kRho)));
+    const auto o = sim.outputs();
+    e.rho_m = xs(cvt::RomLayout<kWedgeRoad>::kRho);
+    e.r1_m = cvt::to_double(o.radius1_m);
+    e.r2_m = cvt::to_double(o.radius2_m);
+    e.residual_rel = std::fabs(double(sim.energy().residual_J())) / double(sim.energy().scale_J());
+    return true;
+  });
+  e.max_pen_m = std::max(0.0, max_rho - s.params.radial_travel_m);
+  return e;
+}
+
+}  // namespace
+
+TEST_CASE("wedging: the driven radius keeps the chain length (cubic fit within 1e-5 m over the travel)") {
+  const cvt::RomParams p;
+  Rom rom(p);
+  for (double rho = -p.radial_travel_m; rho <= p.radial_travel_m + 1e-12; rho += p.radial_travel_m / 10) {
+    CAPTURE(rho);
+    Rom::State x = rom.initial_state(cvt::RomInitial{});
+    x(L::kRho) = rho;
+    CHECK(std::fabs(rom.pitch_radius2(x) - driven_radius_by_length(p, rho)) < 1e-5);
+  }
+  // kappa = -dr2/dr1 is the wrap angle ratio theta1/theta2 at the set-up radii.
+  const double a = std::asin((p.r2_m - p.r1_m) / p.center_distance_m);
+  CHECK(rom.ratio_slope(0.0) == doctest::Approx((kPi - 2 * a) / (kPi + 2 * a)).epsilon(1e-5));
+  // The radial mass and driven clamping defaults follow from Table 1 (docs/rom.md#wedging).
+  const double n_w1 = p.r1_m * (kPi - 2 * a) / 0.03, n_w2 = p.r2_m * (kPi + 2 * a) / 0.03;
+  const double kappa = (kPi - 2 * a) / (kPi + 2 * a);
+  CHECK(p.radial_mass_kg == doctest::Approx((n_w1 + kappa * kappa * n_w2) * 0.1125).epsilon(1e-12));
+  CHECK(p.driven_clamp_N == doctest::Approx(3300.0 / kappa).epsilon(1e-12));
+}
+
+TEST_CASE("wedging: contact forces satisfy seed Eq. 7 and oppose the slip velocity") {
+  for (const auto& fr : {cvt::friction_presets::table2_case1<double>(), cvt::friction_presets::table2_case2<double>()}) {
+    cvt::RomParams p;
+    p.friction = fr;
+    Rom rom(p);
+    const double fax = 3300.0, cb = std::cos(p.beta0_rad), tb = std::tan(p.beta0_rad);
+    for (const double vt : {0.3, -0.05, 1e-4, 0.0}) {
+      for (const double rhod : {-0.02, 0.0, 0.01}) {
+        CAPTURE(vt);
+        CAPTURE(rhod);
+        const auto c = rom.wedge_contact(vt, vt, rhod, fax);
+        const double gr = rhod / cb;
+        const double F = std::hypot(c.F1, c.Fr1);
+        // N from Eq. 7, and |F_f| = mu(|v|) s(|v|) N.
+        const double N = c.Fr1 * tb + fax / cb;
+        const double speed = std::hypot(vt, gr);
+        if (speed > 0) {
+          CHECK(F == doctest::Approx(cvt::friction_characteristic(p.friction, speed) * N).epsilon(1e-12));
+          // The friction vector is antiparallel to (v_t, g_r).
+          CHECK(c.F1 * gr - c.Fr1 * vt == doctest::Approx(0.0).scale(1e-9 * F));
+          CHECK(c.F1 * vt + c.Fr1 * gr <= 0.0);
+        } else {
+          CHECK(F == 0.0);
+        }
+        // Moving inward (g_r < 0) wedges the chain: more normal force.
+        if (rhod < 0 && vt == 1e-4) CHECK(N > fax / cb);
+        if (rhod > 0 && vt == 1e-4) CHECK(N < fax / cb);
+      }
+    }
+  }
+}
+
+TEST_CASE("wedging: without radial motion the plant is the axial plant (tangential rows agree to rounding)") {
+  cvt::RomParams p;
+  Rom rom(p);
+  cvt::CvtRom<double, f::axial> ref(p);
+  for (auto* r : {&rom.inputs, &ref.inputs}) {
+    r->tau_in_Nm = 80.0;
+    r->tau_load_Nm = 40.0;
+    r->clamp_N = 3300.0;
+  }
+  cvt::RomInitial x0;
+  x0.omega1_rad_s = 150.0;
+  x0.omega2_rad_s = 99.9;
+  x0.x1_m = 0.01;
+  const Rom::State x = rom.initial_state(x0);
+  const auto xr = ref.initial_state(x0);
+  Rom::State d;
+  cvt::CvtRom<double, f::axial>::State dr;
+  rom.derivative(x, d);
+  ref.derivative(xr, dr);
+  for (int i = 0; i < 9; ++i) {
+    CAPTURE(i);
+    CHECK(d(i) == doctest::Approx(dr(i)).epsilon(1e-11).scale(1e-9));
+  }
+  // Driven clamping at 3.3 kN / kappa: radial forces balance at rho = 0, to
+  // the 1e-5 of the cubic's slope against theta1/theta2.
+  const double radial_push_N = 2 * std::tan(p.beta0_rad) * 3300.0;
+  CHECK(std::fabs(d(L::kRhoDot)) * p.radial_mass_kg < 1e-5 * radial_push_N);
+}
+
+TEST_CASE("wedging: dual-number Jacobian matches central differences") {
+  for (const auto& fr : {cvt::friction_presets::table2_case1<double>(), cvt::friction_presets::table2_case2<double>()}) {
+    cvt::RomParams p;
+    p.friction = fr;
+    Rom rom(p);
+    rom.inputs.tau_in_Nm = 80.0;
+    rom.inputs.tau_load_Nm = 40.0;
+    rom.inputs.clamp_N = 3300.0;
+    const Rom::State x = moving_state(rom);
+    Rom::Jacobian J;
+    rom.jacobian(x, J);
+    for (int j = 0; j < Rom::kStates; ++j) {
+      const double h = 1e-6 * std::max(1.0, std::fabs(x(j)));
+      Rom::State xp = x, xm = x, fp, fm;
+      xp(j) += h;
+      xm(j) -= h;
+      rom.derivative(xp, fp);
+      rom.derivative(xm, fm);
+      for (int i = 0; i < Rom::kStates; ++i) {
+        CAPTURE(i);
+        CAPTURE(j);
+        const double fd = (fp(i) - fm(i)) / (2 * h);
+        CHECK(J(i, j) == doctest::Approx(fd).epsilon(1e-5).scale(1e-6 * (std::fabs(fd) + 1.0)));
+      }
+    }
+  }
+}
+
+TEST_CASE("wedging: equal thrust ratio holds the ratio, a higher primary clamp upshifts to a new equilibrium") {
+  // Driven clamping 3636.8 N holds rho = 0 at 3.3 kN primary.
+  const RunEnd hold = run<double>(ratio_scene(3300.0, 3300.0));
+  CHECK(hold.fault == cvt::RomFault::none);
+  CHECK(std::fabs(hold.rho_m) < 2e-4);
+  // 3.5 kN: the chain climbs the driver (r1 up, r2 down) towards
+  // kappa(rho) = 3500 / 3636.8.
+  const cvt::Scene s = ratio_scene(3300.0, 3500.0);
+  const RunEnd up = run<double>(s);
+  CHECK(up.fault == cvt::RomFault::none);
+  CHECK(up.rho_m > 0.005);
+  CHECK(up.r2_m < s.params.r2_m - 0.004);
+  Rom rom(s.params);
+  const double target = 3500.0 / s.params.driven_clamp_N;
+  CHECK(std::fabs(rom.ratio_slope(up.rho_m) - target) < 0.5 * std::fabs(rom.ratio_slope(0.0) - target));
+  // A lower primary clamp downshifts.
+  const RunEnd down = run<double>(ratio_scene(3300.0, 3100.0));
+  CHECK(down.fault == cvt::RomFault::none);
+  CHECK(down.rho_m < -0.005);
+}
+
+TEST_CASE("wedging: energy balance closes (double and float), also against an end stop") {
+  for (const double after : {3500.0, 1200.0}) {
+    CAPTURE(after);
+    const cvt::Scene s = ratio_scene(3300.0, after);
+    const RunEnd d = run<double>(s);
+    const RunEnd fl = run<float>(s);
+    CHECK(d.fault == cvt::RomFault::none);
+    CHECK(fl.fault == cvt::RomFault::none);
+    CHECK(d.residual_rel < 1e-4);
+    CHECK(fl.residual_rel < 1e-3);
+    CHECK(fl.rho_m == doctest::Approx(d.rho_m).epsilon(0.02).scale(1e-4));
+    if (after == 1200.0) {
+      // 1.2 kN against 3.6 kN driven clamping drives the chain to the hub
+      // stop; the 1e7 N/m stop holds it within a millimetre.
+      CHECK(d.rho_m < -s.params.radial_travel_m);
+      CHECK(d.max_pen_m < 1e-3);
+    }
+  }
+}
+
+TEST_CASE("wedging: a chain driven through the stop is a reported fault, not a silent state") {
+  cvt::Scene s = ratio_scene(3300.0, 1200.0);
+  s.params.radial_stop_N_m = 10.0;  // far too soft to hold the driven clamping
+  const RunEnd e = run<double>(s);
+  CHECK(e.fault == cvt::RomFault::radius_out_of_range);
+  CHECK(std::string(cvt::rom_fault_name(e.fault)) == "radius-out-of-range");
+}
+
+TEST_CASE("wedging: scene validation") {
+  cvt::Scene s = ratio_scene(3300.0, 3500.0);
+  CHECK(cvt::validate_scene(s).ok);
+  auto field = [](const cvt::Scene& x) { return std::string(cvt::validate_scene(x).field); };
+  cvt::Scene t = s;
+  t.features = f::wedging;
+  CHECK(field(t) == "features");
+  t = s;
+  t.scalar = cvt::ScalarKind::q16_16;
+  CHECK(field(t) == "scalar");
+  t = s;
+  t.params.driven_clamp_N = -1;
+  CHECK(field(t) == "driven_clamp_N");
+  t = s;
+  t.params.radial_travel_m = 0.05;  // 2 x travel > r1
+  CHECK(field(t) == "radial_travel_m");
+  t = s;
+  t.params.friction.mu0 = 2.0;  // mu tan(15 deg) = 0.54: fine
+  CHECK(cvt::validate_scene(t).ok);
+  t.params.beta0_rad = 0.5;  // mu tan(28.6 deg) = 1.09: self-locking
+  CHECK(field(t) == "beta0_deg");
+  t = s;
+  t.initial.radius_offset_m = 0.03;
+  CHECK(field(t) == "initial");
+  t = s;
+  t.params.radial_mass_kg = std::nan("");
+  CHECK(field(t) == "radial_mass_kg");
+}
