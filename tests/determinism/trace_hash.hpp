@@ -65,7 +65,7 @@ std::uint64_t oscillator_trace_hash(Method m, double h_s, long steps) {
 }
 
 // The reduced-order plant (docs/rom.md): a built-in scene at its real-time
-// default (ROS2, 2 substeps per 1 ms frame, energy watchdog on) for
+// default (one ROS2 step per 1 ms frame, energy watchdog on) for
 // `seconds`; every state after every frame, then the fault code. Fixed point
 // hashes its internal units (RomUnits), which are part of what must agree.
 template <class T, std::uint32_t F>

@@ -218,7 +218,16 @@ TEST_CASE("wedging: equal thrust ratio holds the ratio, a higher primary clamp u
 TEST_CASE("wedging: energy balance closes (double and float), also against an end stop") {
   for (const double after : {3500.0, 1200.0}) {
     CAPTURE(after);
-    const cvt::Scene s = ratio_scene(3300.0, after);
+    cvt::Scene s = ratio_scene(3300.0, after);
+    // The 1e7 N/m stop against the 2 kg radial mass rings at 2.8 ms, which
+    // one 1 ms step per frame does not resolve: the ledger's trapezoid then
+    // closes to 1.5e-3 only (docs/rom.md#wedging), two substeps to 1e-4.
+    if (after == 1200.0) {
+      const RunEnd one = run<double>(s);
+      CHECK(one.fault == cvt::RomFault::none);
+      CHECK(one.residual_rel < 5e-3);
+      s.substeps = 2;
+    }
     const RunEnd d = run<double>(s);
     const RunEnd fl = run<float>(s);
     CHECK(d.fault == cvt::RomFault::none);

@@ -142,10 +142,18 @@ S friction_characteristic(const FrictionParams<T>& p, const S& v_rel_m_s) {
   return friction_coefficient(p, dm::abs(v_rel_m_s)) * friction_sign(p, v_rel_m_s);
 }
 
-// d phi / d v_rel, analytic, for Jacobians (docs/physics.md#friction-derivative).
-// At v = 0 the |v| kink of mu multiplies s(0) = 0, so the expression is exact there too.
+// phi(v_rel) and d phi / d v_rel together (docs/physics.md#friction-derivative):
+// the plant's Jacobian and right-hand side need both at the same slip speed,
+// and the exponentials and the atan are most of their cost. phi is bit for bit
+// friction_characteristic(p, v): the same operations in the same order.
 template <class T>
-T friction_characteristic_slope(const FrictionParams<T>& p, const T& v_rel_m_s) {
+struct FrictionEval {
+  T phi{};    // mu(|v|) s(v) [-]
+  T slope{};  // d phi / d v [s/m]
+};
+
+template <class T>
+FrictionEval<T> friction_characteristic_and_slope(const FrictionParams<T>& p, const T& v_rel_m_s) {
   const T speed = dm::abs(v_rel_m_s);
   const T s = friction_sign(p, v_rel_m_s);
   // ds/dv
@@ -164,28 +172,40 @@ T friction_characteristic_slope(const FrictionParams<T>& p, const T& v_rel_m_s) 
       break;
     }
   }
-  // dmu/d|v|
-  T dmu = T(0);
+  // mu(|v|) and dmu/d|v|, sharing the exponentials; mu as in friction_coefficient.
+  T mu = p.mu0, dmu = T(0);
   switch (p.law) {
-    case FrictionLaw::case1:
-      dmu = (p.mu0 - p.a) / p.b_m_s * dm::exp(-speed / p.b_m_s);
+    case FrictionLaw::case1: {
+      const T e = dm::exp(-speed / p.b_m_s);
+      mu = p.a + (p.mu0 - p.a) * (T(1) - e);
+      dmu = (p.mu0 - p.a) / p.b_m_s * e;
       break;
+    }
     case FrictionLaw::case2: {
       const T ek = dm::exp(-p.kappa_s_m * speed);
       const T ec = dm::exp(-p.chi_s_m * speed);
       const T g1 = T(1) - ek;
       const T g2 = T(1) + (p.sigma - T(1)) * ec;
+      mu = p.mu0 * g1 * g2;
       dmu = p.mu0 * (p.kappa_s_m * ek * g2 - g1 * (p.sigma - T(1)) * p.chi_s_m * ec);
       break;
     }
     case FrictionLaw::constant:
     default:
-      dmu = T(0);
       break;
   }
-  const T mu = friction_coefficient(p, speed);
-  // d|v|/dv * s = sign(v) * s(v) = |s(v)| for an odd s.
-  return dmu * dm::abs(s) + mu * ds;
+  FrictionEval<T> r;
+  r.phi = mu * s;
+  // d|v|/dv * s = sign(v) * s(v) = |s(v)| for an odd s. At v = 0 the |v| kink
+  // of mu multiplies s(0) = 0, so the expression is exact there too.
+  r.slope = dmu * dm::abs(s) + mu * ds;
+  return r;
+}
+
+// d phi / d v_rel, analytic, for Jacobians (docs/physics.md#friction-derivative).
+template <class T>
+T friction_characteristic_slope(const FrictionParams<T>& p, const T& v_rel_m_s) {
+  return friction_characteristic_and_slope(p, v_rel_m_s).slope;
 }
 
 }  // namespace cvt

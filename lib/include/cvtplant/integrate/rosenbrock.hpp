@@ -16,10 +16,13 @@
 
 namespace cvt {
 
+// The steps with a given matrix J in W = I - a J: the system's Jacobian at
+// x_n for the methods as written, or an approximation of it (both methods
+// keep their order for any J: ROS2 is a W-method, linearly implicit Euler is
+// first order anyway; docs/numerics.md#rosenbrock).
 template <class Sys>
-void step_linear_implicit_euler(const Sys& sys, StateOf<Sys>& x, typename Sys::Scalar h) {
-  JacobianOf<Sys> J;
-  jacobian(sys, x, J);
+void step_linear_implicit_euler_with(const Sys& sys, StateOf<Sys>& x, typename Sys::Scalar h,
+                                     const JacobianOf<Sys>& J) {
   const JacobianOf<Sys> W = JacobianOf<Sys>::Identity() - h * J;
   const Eigen::PartialPivLU<JacobianOf<Sys>> lu(W);
   StateOf<Sys> f;
@@ -29,12 +32,10 @@ void step_linear_implicit_euler(const Sys& sys, StateOf<Sys>& x, typename Sys::S
 }
 
 template <class Sys>
-void step_ros2(const Sys& sys, StateOf<Sys>& x, typename Sys::Scalar h) {
+void step_ros2_with(const Sys& sys, StateOf<Sys>& x, typename Sys::Scalar h, const JacobianOf<Sys>& J) {
   using T = typename Sys::Scalar;
   // gamma = 1 + 1/sqrt(2), written out so float/fixed round it once at set-up.
   const T gamma = T(1.70710678118654752440);
-  JacobianOf<Sys> J;
-  jacobian(sys, x, J);
   const JacobianOf<Sys> W = JacobianOf<Sys>::Identity() - (gamma * h) * J;
   const Eigen::PartialPivLU<JacobianOf<Sys>> lu(W);
   StateOf<Sys> f, k1, k2;
@@ -45,6 +46,20 @@ void step_ros2(const Sys& sys, StateOf<Sys>& x, typename Sys::Scalar h) {
   f -= T(2) * k1;
   k2 = lu.solve(f);
   x += (h * T(1.5)) * k1 + (h * T(0.5)) * k2;
+}
+
+template <class Sys>
+void step_linear_implicit_euler(const Sys& sys, StateOf<Sys>& x, typename Sys::Scalar h) {
+  JacobianOf<Sys> J;
+  jacobian(sys, x, J);
+  step_linear_implicit_euler_with(sys, x, h, J);
+}
+
+template <class Sys>
+void step_ros2(const Sys& sys, StateOf<Sys>& x, typename Sys::Scalar h) {
+  JacobianOf<Sys> J;
+  jacobian(sys, x, J);
+  step_ros2_with(sys, x, h, J);
 }
 
 }  // namespace cvt

@@ -139,6 +139,12 @@ class CvtRom {
     c_.hold1 = p.hold_driver_speed;
     c_.hold2 = p.hold_driven_speed;
     c_.stick_speed = T(p.stick_speed_m_s);
+    // docs/rom.md#slope-floor: the edge of the sign's regularisation layer
+    // (none for the exact sign) and the friction slope there.
+    if (p.friction.sign != SignFunction::exact) {
+      c_.floor_speed = T(1.0 / p.friction.lambda_s_m);
+      c_.slope_floor = friction_characteristic_slope(c_.friction, c_.floor_speed);
+    }
     c_.tu = T(U::time_s);
     if constexpr (L::kAxial) {
       // Per time unit in the constant (0.049 in fixed point, 3200 LSB): one
@@ -368,44 +374,43 @@ class CvtRom {
     return tl;
   }
 
+  // Friction of both lumps at a state, value and slope (non-wedging plants):
+  // evaluated once per state and shared by the right-hand side, the Jacobian
+  // and the power terms, since the exponentials and the atan are most of a
+  // frame on a Cortex-M (docs/rom.md#cost).
+  struct Contact {
+    T r1e{};             // effective driver radius [m]
+    T v_rel1{}, v_rel2{};  // slip speeds [m/s]
+    FrictionEval<T> lump1{}, lump2{};
+  };
+  Contact contact(const State& x) const {
+    static_assert(!L::kWedge, "wedging plants evaluate the contact inside derivative() (docs/rom.md#wedging)");
+    Contact c;
+    c.r1e = driver_radius(x);
+    const T v1 = c.r1e * x(L::kW1);
+    const T vc = c_.r2 * x(L::kW2);
+    c.v_rel1 = (vc + x(L::kV1)) - v1;
+    c.v_rel2 = (vc + x(L::kV2)) - v1;
+    c.lump1 = friction_characteristic_and_slope(c_.friction, c.v_rel1);
+    c.lump2 = friction_characteristic_and_slope(c_.friction, c.v_rel2);
+    return c;
+  }
+
   template <class S>
   void derivative(const Eigen::Matrix<S, kStates, 1>& x, Eigen::Matrix<S, kStates, 1>& dxdt) const {
     if constexpr (L::kWedge) {
       derivative_wedge(x, dxdt);
-      return;
+    } else {
+      const S r1e = driver_radius(x);
+      const S v1 = r1e * x(L::kW1);
+      const S vc = S(c_.r2) * x(L::kW2);
+      derivative_given(x, r1e, friction_characteristic(c_.friction, S((vc + x(L::kV1)) - v1)),
+                       friction_characteristic(c_.friction, S((vc + x(L::kV2)) - v1)), dxdt);
     }
-    const S w1 = x(L::kW1), w2 = x(L::kW2);
-    const S x1 = x(L::kX1), xd1 = x(L::kV1), x2 = x(L::kX2), xd2 = x(L::kV2);
-    const S r1e = driver_radius(x);
-    const S v1 = r1e * w1;
-    const S vc = S(c_.r2) * w2;
-    const S fax = clamp_force(x);
-    // Friction and spring groupings match StickSlipOscillator so that the
-    // held-pulley scene reproduces seed Eq. 9 to the last bit (docs/rom.md#holds).
-    const S F1 = -friction_characteristic(c_.friction, S((vc + xd1) - v1)) * (fax * S(c_.inv_cos1));
-    const S F2 = -friction_characteristic(c_.friction, S((vc + xd2) - v1)) * (fax * S(c_.inv_cos2));
-    const S mid = S(c_.k2) * (x1 - x2) + S(c_.c2) * (xd1 - xd2);
-    const S strand1 = S(c_.k1) * x1 + S(c_.c1) * xd1;
-    const S strand2 = S(c_.k1) * x2 + S(c_.c1) * xd2;
-    // Rates per time unit (per_tau; docs/rom.md#fixed-point). Displacement
-    // rows need no factor: length unit / time unit = 1 m/s.
-    const S w1dot = c_.hold1 ? S(T(0)) : per_tau((S(inputs.tau_in_Nm) - r1e * (F1 + F2)) * S(c_.inv_J1));
-    const S w2dot = c_.hold2 ? S(T(0)) : per_tau((S(c_.r2) * (strand1 + strand2) - load_torque(w2)) * S(c_.inv_J2));
-    const S chain_acc = S(c_.r2) * w2dot;
-    dxdt(L::kW1) = w1dot;
-    dxdt(L::kW2) = w2dot;
-    dxdt(L::kX1) = xd1;
-    dxdt(L::kV1) = per_tau((F1 - strand1 - mid) * S(c_.inv_m)) - chain_acc;
-    dxdt(L::kX2) = xd2;
-    dxdt(L::kV2) = per_tau((F2 - strand2 + mid) * S(c_.inv_m)) - chain_acc;
-    if constexpr (L::kAxial) {
-      const S fh = x(L::kFh), dd = x(L::kDeltaDot);
-      // inv_tau_h is per time unit already (a kN step times 50 1/s leaves q16.16).
-      dxdt(L::kFh) = (S(saturated_command()) - fh) * S(c_.inv_tau_h);
-      dxdt(L::kDelta) = dd;
-      dxdt(L::kDeltaDot) = per_tau((fh - fax - S(c_.cs) * dd) * S(c_.inv_ms));
-    }
-    if constexpr (L::kPolygon) dxdt(L::kPsi) = per_tau(w1);
+  }
+  // The same, with the friction already evaluated at x (c = contact(x)).
+  void derivative(const State& x, const Contact& c, State& dxdt) const {
+    derivative_given(x, c.r1e, c.lump1.phi, c.lump2.phi, dxdt);
   }
 
   // Analytic Jacobian (docs/rom.md#jacobian). Held pulleys get zero rows AND
@@ -415,22 +420,35 @@ class CvtRom {
   void jacobian(const State& x, Jacobian& J) const {
     if constexpr (L::kWedge) {
       jacobian_by_duals(*this, x, J);
-      return;
+    } else {
+      jacobian(x, contact(x), J, false);
     }
+  }
+
+  // The Jacobian from the friction already evaluated at x. With
+  // `w_slope_floor` it is the matrix W of the real-time step instead
+  // (docs/rom.md#slope-floor): inside the sign's regularisation layer
+  // |v_rel| < 1/lambda the friction slope is raised to at least its value at
+  // the layer's edge. Seed case 2 has mu(0) = 0, so at exact rest the true
+  // slope is zero and a step would not see the stick stiffness that appears
+  // within it. ROS2 is a W-method (order 2 for any W), so this changes the
+  // step's error constant near stick, not its order.
+  void jacobian(const State& x, const Contact& c, Jacobian& J, bool w_slope_floor) const {
+    static_assert(!L::kWedge, "wedging plants use jacobian(x, J) (docs/rom.md#wedging)");
     J.setZero();
     const T w1 = x(L::kW1), w2 = x(L::kW2);
-    const T xd1 = x(L::kV1), xd2 = x(L::kV2);
-    const T r1e = driver_radius(x);
-    const T v1 = r1e * w1;
-    const T vc = c_.r2 * w2;
-    const T vr1 = (vc + xd1) - v1, vr2 = (vc + xd2) - v1;
+    const T r1e = c.r1e;
     const T fax = clamp_force(x);
     const T N1 = fax * c_.inv_cos1, N2 = fax * c_.inv_cos2;
+    T s1 = c.lump1.slope, s2 = c.lump2.slope;
+    if (w_slope_floor) {
+      if (dm::abs(c.v_rel1) < c_.floor_speed && s1 < c_.slope_floor) s1 = c_.slope_floor;
+      if (dm::abs(c.v_rel2) < c_.floor_speed && s2 < c_.slope_floor) s2 = c_.slope_floor;
+    }
     // dF_i/dv_rel_i = -phi'(v_rel) N_i, per time unit: phi' N alone (5e6
     // N s/m at 3.3 kN) would not fit q16.16, phi' per time unit does.
-    const T g1 = -per_tau(friction_characteristic_slope(c_.friction, vr1)) * N1;
-    const T g2 = -per_tau(friction_characteristic_slope(c_.friction, vr2)) * N2;
-    const T gs = g1 + g2;
+    const T g1 = -per_tau(s1) * N1;
+    const T g2 = -per_tau(s2) * N2;
     const T im = c_.inv_m;
     const bool free1 = !c_.hold1, free2 = !c_.hold2;
 
@@ -463,8 +481,8 @@ class CvtRom {
     if constexpr (L::kAxial) {
       if (x(L::kDelta) > T(0)) {
         // dF_i/dF_ax = -phi(v_rel_i) / cos(beta_i)
-        dF1[L::kDelta] = per_tau(-friction_characteristic(c_.friction, vr1) * c_.inv_cos1 * c_.K_ax);
-        dF2[L::kDelta] = per_tau(-friction_characteristic(c_.friction, vr2) * c_.inv_cos2 * c_.K_ax);
+        dF1[L::kDelta] = per_tau(-c.lump1.phi * c_.inv_cos1 * c_.K_ax);
+        dF2[L::kDelta] = per_tau(-c.lump2.phi * c_.inv_cos2 * c_.K_ax);
       }
     }
     T sin_psi = T(0);
@@ -481,13 +499,12 @@ class CvtRom {
     if (free1) {
       for (int j = 0; j < kStates; ++j) J(L::kW1, j) = -r1e * (dF1[j] + dF2[j]) * c_.inv_J1;
       if constexpr (L::kPolygon) {
-        const T F1 = -friction_characteristic(c_.friction, vr1) * N1;
-        const T F2 = -friction_characteristic(c_.friction, vr2) * N2;
+        const T F1 = -c.lump1.phi * N1;
+        const T F2 = -c.lump2.phi * N2;
         // d(r1e)/dpsi = -r1 sin(psi)
         J(L::kW1, L::kPsi) += per_tau(c_.r1 * sin_psi * (F1 + F2) * c_.inv_J1);
       }
     }
-    (void)gs;
     J(L::kX1, L::kV1) = T(1);
     J(L::kX2, L::kV2) = T(1);
     for (int j = 0; j < kStates; ++j) {
@@ -510,6 +527,41 @@ class CvtRom {
       J(L::kDeltaDot, L::kDeltaDot) = per_tau(-c_.cs * c_.inv_ms);
     }
     if constexpr (L::kPolygon) J(L::kPsi, L::kW1) = per_tau(T(1));
+  }
+
+  // docs/rom.md#slope-floor for the dense W of the wedging plants: adds to J
+  // the part of the floor that acts through the tangential slip speed,
+  // dF_i/dv_t,i raised by (floor - phi') F_ax / cos(beta_i) on the rows of w1
+  // and xd_i and the columns w1, w2, xd_i. An approximation of the same floor
+  // (the normal force's radial factor and the radial row are left out), which
+  // a W-method allows.
+  void add_w_slope_floor(const State& x, Jacobian& J) const {
+    const T r1e = driver_radius(x);
+    const T r2 = pitch_radius2(x);
+    const T v1 = r1e * x(L::kW1);
+    const T vc = r2 * x(L::kW2);
+    const T fax = clamp_force(x);
+    const int v_col[2] = {L::kV1, L::kV2};
+    const T inv_cos[2] = {c_.inv_cos1, c_.inv_cos2};
+    for (int i = 0; i < 2; ++i) {
+      const T vt = (vc + x(v_col[i])) - v1;
+      if (!(dm::abs(vt) < c_.floor_speed)) continue;
+      const T slope = friction_characteristic_slope(c_.friction, vt);
+      if (!(slope < c_.slope_floor)) continue;
+      // Extra dF_i/dv_t (negative: friction opposes slip), per time unit.
+      const T dg = -per_tau(c_.slope_floor - slope) * (fax * inv_cos[i]);
+      T dv[kStates];  // d v_t,i / dx
+      for (int j = 0; j < kStates; ++j) dv[j] = T(0);
+      if (!c_.hold1) dv[L::kW1] = -r1e;
+      if (!c_.hold2) dv[L::kW2] = r2;
+      dv[v_col[i]] = T(1);
+      for (int j = 0; j < kStates; ++j) {
+        if (dv[j] == T(0)) continue;
+        const T dF = dg * dv[j];
+        if (!c_.hold1) J(L::kW1, j) -= r1e * dF * c_.inv_J1;
+        J(v_col[i], j) += dF * c_.inv_m;
+      }
+    }
   }
 
   RomOutputs<T> outputs(const State& x) const {
@@ -591,27 +643,35 @@ class CvtRom {
 
   // Power terms at state x with the current inputs (docs/rom.md#energy-balance).
   RomPower<Acc> power(const State& xs) const {
-    const RomOutputs<T> o = outputs(xs);
-    Acc x[kStates];
-    for (int i = 0; i < kStates; ++i) x[i] = to_acc(xs(i));
-    RomPower<Acc> pw;
-    pw.input_W = to_acc(o.tau_in_Nm) * x[L::kW1];
-    pw.load_W = to_acc(o.tau_load_Nm) * x[L::kW2];
-    pw.friction_loss_W = -(to_acc(o.friction1_N) * to_acc(o.v_rel1_m_s) + to_acc(o.friction2_N) * to_acc(o.v_rel2_m_s));
-    const Acc dv = x[L::kV1] - x[L::kV2];
-    pw.damping_loss_W = a_.c1 * (x[L::kV1] * x[L::kV1] + x[L::kV2] * x[L::kV2]) + a_.c2 * dv * dv;
-    if constexpr (L::kAxial) {
-      pw.actuator_W = x[L::kFh] * x[L::kDeltaDot];
-      pw.damping_loss_W += a_.cs * x[L::kDeltaDot] * x[L::kDeltaDot];
-    }
     if constexpr (L::kWedge) {
+      const RomOutputs<T> o = outputs(xs);
+      RomPower<Acc> pw = power_given(xs, o.tau_in_Nm, o.tau_load_Nm, o.friction1_N, o.friction2_N, o.v_rel1_m_s,
+                                     o.v_rel2_m_s);
       // Radial slip along the flank is rhodot / cos(beta_i).
-      const Acc rd = x[L::kRhoDot];
+      const Acc rd = to_acc(xs(L::kRhoDot));
       pw.friction_loss_W -= to_acc(o.radial_friction1_N) * rd * to_acc(c_.inv_cos1) +
                             to_acc(o.radial_friction2_N) * rd * to_acc(c_.inv_cos2);
       pw.damping_loss_W += a_.cr * rd * rd;
+      return pw;
+    } else {
+      return power(xs, contact(xs));
     }
-    return pw;
+  }
+  // The same, with the friction already evaluated at x (c = contact(x)); the
+  // forces and torques as outputs() computes them.
+  RomPower<Acc> power(const State& xs, const Contact& c) const {
+    const T fax = clamp_force(xs);
+    const T F1 = -c.lump1.phi * (fax * c_.inv_cos1);
+    const T F2 = -c.lump2.phi * (fax * c_.inv_cos2);
+    const T tau_in = c_.hold1 ? c.r1e * (F1 + F2) : inputs.tau_in_Nm;
+    T tau_load;
+    if (c_.hold2) {
+      const T strand = c_.k1 * xs(L::kX1) + c_.c1 * xs(L::kV1) + (c_.k1 * xs(L::kX2) + c_.c1 * xs(L::kV2));
+      tau_load = c_.r2 * strand;
+    } else {
+      tau_load = load_torque(xs(L::kW2));
+    }
+    return power_given(xs, tau_in, tau_load, F1, F2, c.v_rel1, c.v_rel2);
   }
 
   static Acc to_acc(const T& v) {
@@ -620,6 +680,61 @@ class CvtRom {
   }
 
  private:
+  // The power terms common to every feature set, from the applied torques and
+  // the tangential friction forces (docs/rom.md#energy-balance).
+  RomPower<Acc> power_given(const State& xs, const T& tau_in, const T& tau_load, const T& F1, const T& F2,
+                            const T& vr1, const T& vr2) const {
+    Acc x[kStates];
+    for (int i = 0; i < kStates; ++i) x[i] = to_acc(xs(i));
+    RomPower<Acc> pw;
+    pw.input_W = to_acc(tau_in) * x[L::kW1];
+    pw.load_W = to_acc(tau_load) * x[L::kW2];
+    pw.friction_loss_W = -(to_acc(F1) * to_acc(vr1) + to_acc(F2) * to_acc(vr2));
+    const Acc dv = x[L::kV1] - x[L::kV2];
+    pw.damping_loss_W = a_.c1 * (x[L::kV1] * x[L::kV1] + x[L::kV2] * x[L::kV2]) + a_.c2 * dv * dv;
+    if constexpr (L::kAxial) {
+      pw.actuator_W = x[L::kFh] * x[L::kDeltaDot];
+      pw.damping_loss_W += a_.cs * x[L::kDeltaDot] * x[L::kDeltaDot];
+    }
+    return pw;
+  }
+
+  // derivative() without wedging, given the effective driver radius and the
+  // friction characteristic phi_i of each lump at x.
+  template <class S>
+  void derivative_given(const Eigen::Matrix<S, kStates, 1>& x, const S& r1e, const S& phi1, const S& phi2,
+                        Eigen::Matrix<S, kStates, 1>& dxdt) const {
+    const S w2 = x(L::kW2);
+    const S x1 = x(L::kX1), xd1 = x(L::kV1), x2 = x(L::kX2), xd2 = x(L::kV2);
+    const S fax = clamp_force(x);
+    // Friction and spring groupings match StickSlipOscillator so that the
+    // held-pulley scene reproduces seed Eq. 9 to the last bit (docs/rom.md#holds).
+    const S F1 = -phi1 * (fax * S(c_.inv_cos1));
+    const S F2 = -phi2 * (fax * S(c_.inv_cos2));
+    const S mid = S(c_.k2) * (x1 - x2) + S(c_.c2) * (xd1 - xd2);
+    const S strand1 = S(c_.k1) * x1 + S(c_.c1) * xd1;
+    const S strand2 = S(c_.k1) * x2 + S(c_.c1) * xd2;
+    // Rates per time unit (per_tau; docs/rom.md#fixed-point). Displacement
+    // rows need no factor: length unit / time unit = 1 m/s.
+    const S w1dot = c_.hold1 ? S(T(0)) : per_tau((S(inputs.tau_in_Nm) - r1e * (F1 + F2)) * S(c_.inv_J1));
+    const S w2dot = c_.hold2 ? S(T(0)) : per_tau((S(c_.r2) * (strand1 + strand2) - load_torque(w2)) * S(c_.inv_J2));
+    const S chain_acc = S(c_.r2) * w2dot;
+    dxdt(L::kW1) = w1dot;
+    dxdt(L::kW2) = w2dot;
+    dxdt(L::kX1) = xd1;
+    dxdt(L::kV1) = per_tau((F1 - strand1 - mid) * S(c_.inv_m)) - chain_acc;
+    dxdt(L::kX2) = xd2;
+    dxdt(L::kV2) = per_tau((F2 - strand2 + mid) * S(c_.inv_m)) - chain_acc;
+    if constexpr (L::kAxial) {
+      const S fh = x(L::kFh), dd = x(L::kDeltaDot);
+      // inv_tau_h is per time unit already (a kN step times 50 1/s leaves q16.16).
+      dxdt(L::kFh) = (S(saturated_command()) - fh) * S(c_.inv_tau_h);
+      dxdt(L::kDelta) = dd;
+      dxdt(L::kDeltaDot) = per_tau((fh - fax - S(c_.cs) * dd) * S(c_.inv_ms));
+    }
+    if constexpr (L::kPolygon) dxdt(L::kPsi) = per_tau(x(L::kW1));
+  }
+
   // One lump of wedge_contact: tangential slip vt, radial slip along the
   // flank gr, N0 = F_ax / cos(beta_i), tb = tan(beta_i).
   template <class S>
@@ -716,6 +831,7 @@ class CvtRom {
     T T0{}, cv{}, ca{}, inv_w_eps{};
     T alpha{};
     T a1{}, a2{}, a3{}, two_tan_b0{}, tan1{}, tan2{}, inv_mr{}, cr{}, driven_force{}, travel{}, k_stop{}, q0{};
+    T floor_speed{}, slope_floor{};  // docs/rom.md#slope-floor
   };
   struct AccConsts {
     Acc J1{}, J2{}, m{}, k1{}, k2{}, c1{}, c2{}, r2{}, ms{}, cs{}, K_ax{};

@@ -59,6 +59,9 @@ struct RomSimConfig {
   bool watchdog_energy = true;
   double energy_rel_tol = 0.05;  // residual > rel * scale + abs  ->  energy_growth
   double energy_abs_tol_J = 1.0;
+  // W of the implicit methods with the friction slope floor
+  // (docs/rom.md#slope-floor); no effect on wedging plants or explicit methods.
+  bool w_slope_floor = true;
 };
 
 template <class T, std::uint32_t Features = 0>
@@ -88,6 +91,7 @@ class RomSimulator {
     ledger_ = EnergyLedger<Acc>{};
     ledger_.stored0_J = ledger_.stored_J = plant_.stored_energy(x_);
     frames_ = 0;
+    refresh_contact();
   }
 
   // One frame with inputs held constant (zero-order hold). Returns the
@@ -99,24 +103,30 @@ class RomSimulator {
       return fault_;
     }
     plant_.inputs = u;
+    if (contact_stale_) refresh_contact();
     const State x_prev = x_;
     const EnergyLedger<Acc> ledger_prev = ledger_;
+    const Contact contact_prev = contact_;
     const int n = cfg_.substeps < 1 ? 1 : cfg_.substeps;
-    RomPower<Acc> p0 = plant_.power(x_);
+    RomPower<Acc> p0 = power_now();
     for (int i = 0; i < n; ++i) {
-      rom_step(cfg_.method, plant_, x_, h_);
+      advance_substep();
       plant_.wrap(x_);
       RomFault f = check_state(x_);
       if (f == RomFault::none && !plant_.radius_in_range(x_)) f = RomFault::radius_out_of_range;
       if (f != RomFault::none) {
         x_ = x_prev;
         ledger_ = ledger_prev;
+        contact_ = contact_prev;
         fault_ = f;
         return fault_;
       }
+      // The friction at the new state serves this power term and the next
+      // substep's Jacobian and right-hand side (docs/rom.md#cost).
+      refresh_contact();
       // docs/rom.md#energy-balance: trapezoid on the power terms at the
       // substep ends (inputs constant over the frame).
-      const RomPower<Acc> p1 = plant_.power(x_);
+      const RomPower<Acc> p1 = power_now();
       const Acc hh = h_acc_ * Acc(0.5);
       ledger_.input_J += hh * (p0.input_W + p1.input_W);
       ledger_.actuator_J += hh * (p0.actuator_W + p1.actuator_W);
@@ -132,6 +142,7 @@ class RomSimulator {
       if (!(r == r) || r > rel_tol_ * ledger_.scale_J() + abs_tol_) {
         x_ = x_prev;
         ledger_ = ledger_prev;
+        contact_ = contact_prev;
         fault_ = RomFault::energy_growth;
       }
     }
@@ -143,7 +154,12 @@ class RomSimulator {
   // displacements are in 2^-10 m); state_si() converts for logs.
   const State& state() const { return x_; }
   Eigen::Matrix<double, Plant::kStates, 1> state_si() const { return plant_.to_si(x_); }
-  State& mutable_state() { return x_; }
+  // Writable state, for tests and harnesses that place the plant. The cached
+  // friction belongs to the state, so the next frame evaluates it afresh.
+  State& mutable_state() {
+    contact_stale_ = true;
+    return x_;
+  }
   const Plant& plant() const { return plant_; }
   const EnergyLedger<Acc>& energy() const { return ledger_; }
   RomFault fault() const { return fault_; }
@@ -152,6 +168,29 @@ class RomSimulator {
   T substep() const { return h_; }
 
  private:
+  static constexpr bool kContact = !Plant::Layout::kWedge;
+  // Friction of the current state (docs/rom.md#cost); empty with wedging.
+  struct NoContact {};
+  using Contact = std::conditional_t<kContact, typename Plant::Contact, NoContact>;
+
+  void refresh_contact() {
+    if constexpr (kContact) contact_ = plant_.contact(x_);
+    contact_stale_ = false;
+  }
+  RomPower<Acc> power_now() const {
+    if constexpr (kContact) return plant_.power(x_, contact_);
+    else return plant_.power(x_);
+  }
+  void advance_substep() {
+    if constexpr (kContact) {
+      if (cfg_.method == Method::ros2 || cfg_.method == Method::linear_implicit_euler) {
+        rom_step_implicit(cfg_.method, plant_, x_, h_, contact_, cfg_.w_slope_floor);
+        return;
+      }
+    }
+    rom_step(cfg_.method, plant_, x_, h_, cfg_.w_slope_floor);
+  }
+
   static bool finite(const T& v) {
     if constexpr (std::is_floating_point_v<T>) {
       return v == v && v - v == v - v;  // NaN fails the first, +-inf the second
@@ -180,6 +219,8 @@ class RomSimulator {
   State x_;
   RomFault fault_ = RomFault::none;
   EnergyLedger<Acc> ledger_{};
+  Contact contact_{};
+  bool contact_stale_ = true;
   long frames_ = 0;
 };
 

@@ -140,34 +140,20 @@ class RomWSolver {
   int perm_[4]{};
 };
 
-// One step of `m` on the plant: ROS2 and linearly implicit Euler through
-// RomWSolver, the explicit methods through the generic integrators. The
-// dense Rosenbrock code is instantiated only for the wedging plants (whose
-// axial rows couple to the rest): with 64 plant types in the CLI, its Eigen
-// LUs were most of the compile time.
+// One ROS2 or linearly implicit Euler step of a plant without wedging, from
+// a state whose friction is already evaluated (c = sys.contact(x)): the
+// simulator evaluates it once per state and shares it with the energy ledger
+// (docs/rom.md#cost). `w_slope_floor` builds W with the friction slope floor
+// of docs/rom.md#slope-floor; without it W = I - gamma h J exactly.
 template <class T, std::uint32_t F>
-void rom_step(Method m, const CvtRom<T, F>& sys, typename CvtRom<T, F>::State& x, const T& h) {
+void rom_step_implicit(Method m, const CvtRom<T, F>& sys, typename CvtRom<T, F>::State& x, const T& h,
+                       const typename CvtRom<T, F>::Contact& c, bool w_slope_floor) {
   using Plant = CvtRom<T, F>;
-  switch (m) {
-    case Method::explicit_euler: step_explicit_euler(sys, x, h); return;
-    case Method::semi_implicit_euler: step_semi_implicit_euler(sys, x, h); return;
-    case Method::heun: step_heun(sys, x, h); return;
-    case Method::rk4: step_rk4(sys, x, h); return;
-    case Method::linear_implicit_euler:
-    case Method::ros2: break;
-  }
-  if constexpr (RomLayout<F>::kWedge) {
-    // Wedging couples the axial rows to the radial and tangential ones, so
-    // the block elimination does not apply: dense LU (docs/rom.md#wedging).
-    if (m == Method::linear_implicit_euler) step_linear_implicit_euler(sys, x, h);
-    else step_ros2(sys, x, h);
-    return;
-  }
   typename Plant::Jacobian J;
-  sys.jacobian(x, J);
+  sys.jacobian(x, c, J, w_slope_floor);
   RomWSolver<T, F> w;
   typename Plant::State f;
-  sys.derivative(x, f);
+  sys.derivative(x, c, f);
   if (m == Method::linear_implicit_euler) {
     // (I - h J) k = f(x), x+ = x + h k
     w.factor(J, h);
@@ -183,6 +169,36 @@ void rom_step(Method m, const CvtRom<T, F>& sys, typename CvtRom<T, F>::State& x
   f -= T(2) * k1;
   const typename Plant::State k2 = w.solve(f);
   x += (h * T(1.5)) * k1 + (h * T(0.5)) * k2;
+}
+
+// One step of `m` on the plant: ROS2 and linearly implicit Euler through
+// RomWSolver, the explicit methods through the generic integrators;
+// `w_slope_floor` as for rom_step_implicit (for the implicit methods). The
+// dense Rosenbrock code is instantiated only for the wedging plants (whose
+// axial rows couple to the rest): with 64 plant types in the CLI, its Eigen
+// LUs were most of the compile time.
+template <class T, std::uint32_t F>
+void rom_step(Method m, const CvtRom<T, F>& sys, typename CvtRom<T, F>::State& x, const T& h,
+              bool w_slope_floor = false) {
+  switch (m) {
+    case Method::explicit_euler: step_explicit_euler(sys, x, h); return;
+    case Method::semi_implicit_euler: step_semi_implicit_euler(sys, x, h); return;
+    case Method::heun: step_heun(sys, x, h); return;
+    case Method::rk4: step_rk4(sys, x, h); return;
+    case Method::linear_implicit_euler:
+    case Method::ros2: break;
+  }
+  if constexpr (RomLayout<F>::kWedge) {
+    // Wedging couples the axial rows to the radial and tangential ones, so
+    // the block elimination does not apply: dense LU (docs/rom.md#wedging).
+    typename CvtRom<T, F>::Jacobian J;
+    sys.jacobian(x, J);
+    if (w_slope_floor) sys.add_w_slope_floor(x, J);
+    if (m == Method::linear_implicit_euler) step_linear_implicit_euler_with(sys, x, h, J);
+    else step_ros2_with(sys, x, h, J);
+  } else {
+    rom_step_implicit(m, sys, x, h, sys.contact(x), w_slope_floor);
+  }
 }
 
 }  // namespace cvt

@@ -108,9 +108,10 @@ struct Scene {
   Profile tau_in{}, tau_load{}, clamp{};
   double t_end_s = 10.0;
   // The real-time default, chosen by measurement (docs/rom.md#real-time-integrator):
-  // ROS2 with 2 substeps per 1 ms frame is stable in every built-in scene.
+  // one ROS2 step per 1 ms frame, W with the friction slope floor
+  // (docs/rom.md#slope-floor), is stable in every built-in scene.
   double frame_s = 1e-3;
-  int substeps = 2;
+  int substeps = 1;
   Method method = Method::ros2;
   ScalarKind scalar = ScalarKind::f64;
   std::uint32_t log = rom_log::torques | rom_log::friction | rom_log::energy;
