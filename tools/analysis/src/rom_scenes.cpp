@@ -11,6 +11,7 @@
 
 #include "cvtplant/analysis/errors.hpp"
 #include "cvtplant/integrate/method.hpp"
+#include "cvtplant/plant/rom_step.hpp"
 #include "cvtplant/scene/builtin_scenes.hpp"
 #include "cvtplant/scene/scene_runner.hpp"
 
@@ -117,11 +118,12 @@ Eigen::Matrix<double, cvt::CvtRom<double, F>::kStates, 1> state_from(const std::
 }
 
 // Integrates with the scene's own method (ros2) at step h: the plant's
-// validated real-time integration (docs/rom.md#real-time-integrator).
+// validated real-time integration (docs/rom.md#real-time-integrator), W with
+// the friction slope floor as in RomSimulator (docs/rom.md#slope-floor).
 template <std::uint32_t F, class State>
 void advance(const cvt::CvtRom<double, F>& plant, cvt::Method method, State& x, double h, long steps) {
   for (long i = 0; i < steps; ++i) {
-    cvt::step(method, plant, x, h);
+    cvt::rom_step(method, plant, x, h, true);
     plant.wrap(x);
     if (!x.allFinite()) throw std::runtime_error("ROM state became non-finite at step " + std::to_string(i));
   }
