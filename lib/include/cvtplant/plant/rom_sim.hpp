@@ -60,7 +60,8 @@ struct RomSimConfig {
   double energy_rel_tol = 0.05;  // residual > rel * scale + abs  ->  energy_growth
   double energy_abs_tol_J = 1.0;
   // W of the implicit methods with the friction slope floor
-  // (docs/rom.md#slope-floor); no effect on wedging plants or explicit methods.
+  // (docs/rom.md#slope-floor; the wedging plants add it to their dense W);
+  // no effect on the explicit methods.
   bool w_slope_floor = true;
 };
 
