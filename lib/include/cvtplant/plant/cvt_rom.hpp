@@ -704,21 +704,33 @@ class CvtRom {
   template <class S>
   void derivative_given(const Eigen::Matrix<S, kStates, 1>& x, const S& r1e, const S& phi1, const S& phi2,
                         Eigen::Matrix<S, kStates, 1>& dxdt) const {
-    const S w2 = x(L::kW2);
-    const S x1 = x(L::kX1), xd1 = x(L::kV1), x2 = x(L::kX2), xd2 = x(L::kV2);
     const S fax = clamp_force(x);
-    // Friction and spring groupings match StickSlipOscillator so that the
-    // held-pulley scene reproduces seed Eq. 9 to the last bit (docs/rom.md#holds).
+    // Friction grouping as in StickSlipOscillator (docs/rom.md#holds).
     const S F1 = -phi1 * (fax * S(c_.inv_cos1));
     const S F2 = -phi2 * (fax * S(c_.inv_cos2));
+    drive_train_rows(x, r1e, S(c_.r2), F1, F2, fax, dxdt);
+  }
+
+  // The rows every feature set shares: pulleys, lumps, axial, polygon phase,
+  // from the radii and the tangential friction forces. With wedging r2 varies
+  // and the chain frame also accelerates with r2' w2 (docs/rom.md#wedging).
+  template <class S>
+  void drive_train_rows(const Eigen::Matrix<S, kStates, 1>& x, const S& r1e, const S& r2, const S& F1, const S& F2,
+                        const S& fax, Eigen::Matrix<S, kStates, 1>& dxdt) const {
+    const S w2 = x(L::kW2);
+    const S x1 = x(L::kX1), xd1 = x(L::kV1), x2 = x(L::kX2), xd2 = x(L::kV2);
+    // Spring groupings match StickSlipOscillator so that the held-pulley
+    // scene reproduces seed Eq. 9 to the last bit (docs/rom.md#holds).
     const S mid = S(c_.k2) * (x1 - x2) + S(c_.c2) * (xd1 - xd2);
     const S strand1 = S(c_.k1) * x1 + S(c_.c1) * xd1;
     const S strand2 = S(c_.k1) * x2 + S(c_.c1) * xd2;
     // Rates per time unit (per_tau; docs/rom.md#fixed-point). Displacement
     // rows need no factor: length unit / time unit = 1 m/s.
     const S w1dot = c_.hold1 ? S(T(0)) : per_tau((S(inputs.tau_in_Nm) - r1e * (F1 + F2)) * S(c_.inv_J1));
-    const S w2dot = c_.hold2 ? S(T(0)) : per_tau((S(c_.r2) * (strand1 + strand2) - load_torque(w2)) * S(c_.inv_J2));
-    const S chain_acc = S(c_.r2) * w2dot;
+    const S w2dot = c_.hold2 ? S(T(0)) : per_tau((r2 * (strand1 + strand2) - load_torque(w2)) * S(c_.inv_J2));
+    S chain_acc = r2 * w2dot;
+    // d(v_c)/dt = r2 w2' + r2' w2, r2' = -kappa(rho) rhodot (floating point only).
+    if constexpr (L::kWedge) chain_acc = chain_acc - ratio_slope(x(L::kRho)) * x(L::kRhoDot) * w2;
     dxdt(L::kW1) = w1dot;
     dxdt(L::kW2) = w2dot;
     dxdt(L::kX1) = xd1;
@@ -757,39 +769,20 @@ class CvtRom {
   // chain frame accelerates with d(r2 w2)/dt, the friction is a vector.
   template <class S>
   void derivative_wedge(const Eigen::Matrix<S, kStates, 1>& x, Eigen::Matrix<S, kStates, 1>& dxdt) const {
-    const S w1 = x(L::kW1), w2 = x(L::kW2);
-    const S x1 = x(L::kX1), xd1 = x(L::kV1), x2 = x(L::kX2), xd2 = x(L::kV2);
     const S rhod = x(L::kRhoDot);
     const S r1e = driver_radius(x);
     const S r2 = pitch_radius2(x);
-    const S v1 = r1e * w1;
-    const S vc = r2 * w2;
+    const S v1 = r1e * x(L::kW1);
+    const S vc = r2 * x(L::kW2);
     const S fax = clamp_force(x);
-    const WedgeContact<S> c = wedge_contact(S((vc + xd1) - v1), S((vc + xd2) - v1), rhod, fax);
-    const S mid = S(c_.k2) * (x1 - x2) + S(c_.c2) * (xd1 - xd2);
-    const S strand1 = S(c_.k1) * x1 + S(c_.c1) * xd1;
-    const S strand2 = S(c_.k1) * x2 + S(c_.c1) * xd2;
-    const S w1dot = c_.hold1 ? S(T(0)) : (S(inputs.tau_in_Nm) - r1e * (c.F1 + c.F2)) * S(c_.inv_J1);
-    const S w2dot = c_.hold2 ? S(T(0)) : (r2 * (strand1 + strand2) - load_torque(w2)) * S(c_.inv_J2);
-    // d(v_c)/dt = r2 w2' + r2' w2, r2' = -kappa(rho) rhodot.
-    const S kappa = ratio_slope(x(L::kRho));
-    const S chain_acc = r2 * w2dot - kappa * rhod * w2;
-    dxdt(L::kW1) = w1dot;
-    dxdt(L::kW2) = w2dot;
-    dxdt(L::kX1) = xd1;
-    dxdt(L::kV1) = (c.F1 - strand1 - mid) * S(c_.inv_m) - chain_acc;
-    dxdt(L::kX2) = xd2;
-    dxdt(L::kV2) = (c.F2 - strand2 + mid) * S(c_.inv_m) - chain_acc;
-    const S fh = x(L::kFh), dd = x(L::kDeltaDot);
-    dxdt(L::kFh) = (S(saturated_command()) - fh) * S(c_.inv_tau_h);
-    dxdt(L::kDelta) = dd;
-    dxdt(L::kDeltaDot) = (fh - fax - S(c_.cs) * dd) * S(c_.inv_ms);
+    const WedgeContact<S> c = wedge_contact(S((vc + x(L::kV1)) - v1), S((vc + x(L::kV2)) - v1), rhod, fax);
+    drive_train_rows(x, r1e, r2, c.F1, c.F2, fax, dxdt);
     // m_r rho'' = 2 tan(beta0) F_b + sum F_r,i / cos(beta_i) - kappa(rho) 2 tan(beta0) F_ax2 - c_r rho' - F_stop
     dxdt(L::kRho) = rhod;
     dxdt(L::kRhoDot) = (S(c_.two_tan_b0) * fax + c.Fr1 * S(c_.inv_cos1) + c.Fr2 * S(c_.inv_cos2) -
-                        kappa * S(c_.driven_force) - S(c_.cr) * rhod - S(c_.k_stop) * stop_penetration(x(L::kRho))) *
+                        ratio_slope(x(L::kRho)) * S(c_.driven_force) - S(c_.cr) * rhod -
+                        S(c_.k_stop) * stop_penetration(x(L::kRho))) *
                        S(c_.inv_mr);
-    if constexpr (L::kPolygon) dxdt(L::kPsi) = w1;
   }
 
   // Set-up helpers in double (never per step).
