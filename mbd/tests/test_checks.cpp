@@ -36,6 +36,7 @@ TEST_CASE("rigid limit: the mean speed ratio of a polygon chain, asin(L/2r1)/asi
   const double ratio = (b.phi_rad[0] - a->phi_rad[0]) / (b.phi_rad[1] - a->phi_rad[1]);
   const double polygon = std::asin(kL / (2 * kR1)) / std::asin(kL / (2 * kR2));
   CHECK(polygon == doctest::Approx(1.50551).epsilon(1e-5));
+  MESSAGE("polygon ratio: closed form " << polygon << ", model " << ratio << " (mean over 0.5-1.5 s)");
   // Left: the joints' 0.17 mm stretch (+7e-5) and the bolts' residual wedging
   // (about +3e-4); both vanish in the limit. The pitch-radius ratio r2/r1 = 1.5
   // is ten times further away.
@@ -65,6 +66,8 @@ TEST_CASE("torque capacity at 3.3 kN clamping: 2 mu0 F_ax r / cos(beta0) = 130.2
   const Sample& s0 = r.samples.front();
   CHECK(s0.F_ax_N[0] == doctest::Approx(3300.0).epsilon(5e-3));
   CHECK(-s0.chain_torque_Nm[0] == doctest::Approx(capacity).epsilon(5e-3));
+  MESSAGE("capacity: closed form " << capacity << " N m at 3300 N, model " << -s0.chain_torque_Nm[0] << " N m at "
+                                   << s0.F_ax_N[0] << " N");
   // Sliding on, the chain climbs in the clamped driver groove; the capacity
   // law holds at every instant with the bolt-force-weighted contact radius.
   for (std::size_t k = 0; k < r.links.size(); ++k) {
@@ -78,6 +81,9 @@ TEST_CASE("torque capacity at 3.3 kN clamping: 2 mu0 F_ax r / cos(beta0) = 130.2
     CAPTURE(s.t_s);
     CHECK(sum_f == doctest::Approx(s.F_ax_N[0]).epsilon(1e-12));
     CHECK(-s.chain_torque_Nm[0] == doctest::Approx(2.0 * kMu0 * sum_fr / std::cos(kBeta0)).epsilon(2e-3));
+    MESSAGE("capacity at t = " << s.t_s << " s: 2 mu0 sum(F_b rho)/cos(beta0) = "
+                               << 2.0 * kMu0 * sum_fr / std::cos(kBeta0) << " N m, model " << -s.chain_torque_Nm[0]
+                               << " N m, F_ax1 " << s.F_ax_N[0] << " N, mean radius " << sum_fr / sum_f << " m");
   }
 }
 
@@ -114,6 +120,7 @@ TEST_CASE("Euler-Eytelwein at gross slip: T_tight / T_slack = exp(mu0 theta1 / s
   const double capstan = std::exp(kMu0 * wrap_driver_rad() / std::sin(kBeta0));
   CHECK(capstan == doctest::Approx(17.94).epsilon(1e-3));
   CHECK(sum / n == doctest::Approx(capstan).epsilon(0.02));
+  MESSAGE("Euler-Eytelwein: closed form " << capstan << ", model " << sum / n << " (mean over 0.2-0.3 s)");
 }
 
 TEST_CASE("static axial force from the bolt springs at the settled pretension: T theta / (2 tan beta0)") {
@@ -149,5 +156,9 @@ TEST_CASE("static axial force from the bolt springs at the settled pretension: T
     // 2 % covers the chord (sin(alpha/2) < alpha/2) and the partly seated
     // links at the wrap's ends.
     CHECK(s.F_ax_N[j] == doctest::Approx(T * wrap[j] / (2.0 * std::tan(kBeta0))).epsilon(0.02));
+    MESSAGE("static axial force, pulley " << j + 1 << ": wrap tension " << T << " N, closed form "
+                                          << T * wrap[j] / (2.0 * std::tan(kBeta0)) << " N, model " << s.F_ax_N[j]
+                                          << " N (free strands " << s.tension_tight_N << ", " << s.tension_slack_N
+                                          << " N)");
   }
 }

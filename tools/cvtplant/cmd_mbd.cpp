@@ -162,7 +162,7 @@ void write_csv_header(std::FILE* f, bool clamped) {
 }
 
 void write_csv_row(std::FILE* f, const cvt::mbd::Sample& s, double res, bool clamped) {
-  std::fprintf(f, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%d,", s.t_s,
+  std::fprintf(f, "%.9g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.9g,%.9g,%.9g,%.9g,%d,%d,", s.t_s,
                s.omega_rad_s[0], s.omega_rad_s[1], s.ratio, s.F_ax_N[0], s.F_ax_N[1], s.chain_torque_Nm[0],
                s.chain_torque_Nm[1], s.tau_in_Nm, s.tau_load_Nm, s.slip_m_s[0], s.slip_m_s[1], s.tension_tight_N,
                s.tension_slack_N, s.wrap_links[0], s.wrap_links[1]);

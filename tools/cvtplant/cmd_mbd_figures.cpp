@@ -104,13 +104,21 @@ std::string chain_picture(const std::string& d, const ModelOptions& m, int c, co
       if (!any) f << "nan nan nan\n\n";
       f << "\n";
     }
+    // Data set 3: the joints (force elements), front pin to the next rear pin.
+    f << "# joints\n";
+    for (std::size_t i = 0; i < r.picture.size(); ++i) {
+      const auto& a = r.picture[i];
+      const auto& b = r.picture[(i + 1) % r.picture.size()];
+      f << a.front_x_m << ' ' << a.front_y_m << " 0\n" << b.rear_x_m << ' ' << b.rear_y_m << " 0\n\n";
+    }
   }
   const cvt::mbd::MbdParams p = params_for(m, c);
   const cvt::mbd::DriveGeometry g(p.r1_m, p.r2_m, p.center_distance_m);
   auto s = open_text(d + "/" + tag + ".gp");
-  s << "set terminal pngcairo size 1200,600 font 'DejaVu Sans,11' noenhanced\nset output '" << png << "'\n"
-    << "set title 'Chain on the pulleys at t = " << fmt(r.picture_t_s) << " s, seed " << case_label(c) << ", "
-    << m.links << " links, " << method_label(m) << " (links: rear pin to front pin; bolt at the front pin)'\n"
+  s << "set terminal pngcairo size 1300,560 font 'DejaVu Sans,11' noenhanced\nset output '" << png << "'\n"
+    << "set title \"Chain on the pulleys at t = " << fmt(r.picture_t_s) << " s, seed " << case_label(c) << ", "
+    << m.links << " links, " << m.sheaves << " sheaves, " << method_label(m)
+    << "\\nlinks drawn from rear to front pin (dot: the bolt at the front pin), thin lines: the joints\"\n"
     << "set size ratio -1\nset grid\nset xlabel 'x [m]'\nset ylabel 'y [m]'\nset key outside right\n"
     << "set xrange [" << -g.r_m[0] - 0.05 << ":" << g.center_distance_m + g.r_m[1] + 0.05 << "]\n"
     << "set yrange [" << -g.r_m[1] - 0.05 << ":" << g.r_m[1] + 0.05 << "]\n"
@@ -118,9 +126,15 @@ std::string chain_picture(const std::string& d, const ModelOptions& m, int c, co
     << "plot " << g.r_m[0] << "*cos(t), " << g.r_m[0] << "*sin(t) lc rgb '#999999' dt 3 title 'pitch circles', "
     << g.center_distance_m << "+" << g.r_m[1] << "*cos(t), " << g.r_m[1]
     << "*sin(t) lc rgb '#999999' dt 3 notitle, "
-    << "'" << d << "/" << tag << ".dat' index 0 using 1:2 with linespoints lw 3 pt 7 ps 0.6 lc rgb '#555555' title 'free', "
-    << "'' index 1 using 1:2 with linespoints lw 3 pt 7 ps 0.6 lc rgb '#1f4e9c' title 'in the driver wrap', "
-    << "'' index 2 using 1:2 with linespoints lw 3 pt 7 ps 0.6 lc rgb '#c0392b' title 'in the driven wrap'\n";
+    << "'" << d << "/" << tag << ".dat' index 0 using 1:2 with lines lw 3 lc rgb '#555555' title 'free', "
+    << "'' index 0 every ::1::1 using 1:2 with points pt 7 ps 0.7 lc rgb '#555555' notitle, "
+    << "'' index 1 using 1:2 with lines lw 3 lc rgb '#1f4e9c' title 'in the driver wrap', "
+    << "'' index 1 every ::1::1 using 1:2 with points pt 7 ps 0.7 lc rgb '#1f4e9c' notitle, "
+    << "'' index 2 using 1:2 with lines lw 3 lc rgb '#c0392b' title 'in the driven wrap', "
+    << "'' index 2 every ::1::1 using 1:2 with points pt 7 ps 0.7 lc rgb '#c0392b' notitle, "
+    << "'' index 3 using 1:2 with lines lw 1 lc rgb '#e69f00' title 'joints (stretch)', "
+    << "'+' using (0):(0) every ::0::0 with points pt 1 ps 2 lc rgb 'black' title 'pulley centres', "
+    << "'+' using (" << g.center_distance_m << "):(0) every ::0::0 with points pt 1 ps 2 lc rgb 'black' notitle\n";
   s.close();
   draw(d + "/" + tag + ".gp");
   return png;
