@@ -533,6 +533,18 @@ std::string ChainModel::state_problem(const double* y) const {
   const double L = p_.link_length_m;
   link_trig(y);
   for (int i = 0; i < n_links_; ++i) {
+    const double* q = y + 6 * i;
+    for (int j = 0; j < 2; ++j) {
+      // The bolt (front pin) deeper than half the pitch radius has gone
+      // through the groove to where the hub would be.
+      const double bx = q[0] + 0.5 * L * cos_[static_cast<std::size_t>(i)] - geo_.centre[j].x;
+      const double by = q[1] + 0.5 * L * sin_[static_cast<std::size_t>(i)] - geo_.centre[j].y;
+      if (std::hypot(bx, by) < 0.5 * geo_.r_m[j])
+        return "link " + std::to_string(i) + " sank to the hub of the " + (j == 0 ? "driver" : "driven") +
+               " pulley (bolt radius " + std::to_string(std::hypot(bx, by)) + " m)";
+    }
+  }
+  for (int i = 0; i < n_links_; ++i) {
     const int b = (i + 1 == n_links_) ? 0 : i + 1;
     const double stretch = joint(y, i).stretch_m;
     if (stretch > 2.0 * L)

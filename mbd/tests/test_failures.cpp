@@ -67,6 +67,10 @@ TEST_CASE("bad states are named: non-finite, a joint torn apart, a link off the 
   y[static_cast<std::size_t>(ChainModel::link_state(12, 0))] += 0.1;  // 10 cm: joints 11-12 and 12-13 torn
   CHECK(m.state_problem(y.data()).find("joint 11-12 stretched") == 0);
   y = y0;
+  y[static_cast<std::size_t>(ChainModel::link_state(3, 0))] = 0.0;  // link 3's bolt near the driver's axis
+  y[static_cast<std::size_t>(ChainModel::link_state(3, 1))] = 0.0;
+  CHECK(m.state_problem(y.data()).find("link 3 sank to the hub of the driver pulley") != std::string::npos);
+  y = y0;
   y[static_cast<std::size_t>(m.pulley_speed(1))] = 2e4;
   CHECK(m.state_problem(y.data()).find("driven pulley speed") == 0);
   std::vector<double> dydt(y0.size());

@@ -98,7 +98,7 @@ class BadInput(unittest.TestCase):
         self.bad("--case", "1", "--t-end", "0", needle="--t-end")
         self.bad("--case", "1", "--t-end", "1e9", needle="--t-end")
         self.bad("--case", "1", "--rtol", "0.1", needle="--rtol")
-        self.bad("--case", "1", "--links", "10", needle="--links")
+        self.bad("--case", "1", "--links", "35", needle="--links")
         self.bad("--case", "1", "--links", "54", needle="--links")
         self.bad("--case", "1", "--t-end", "1", "--sample", "2", needle="--sample")
         self.bad("--case", "1", "--tau-in", "5000", needle="--tau-in")

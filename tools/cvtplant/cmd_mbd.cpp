@@ -77,7 +77,7 @@ void add_model_options(CLI::App* sub, ModelOptions& o) {
       ->check(CLI::IsMember({"bdf", "rk4"}));
   o.dt_opt = sub->add_option("--dt", o.dt_s, "RK4 step [s], [1e-8, 1e-4] (default 1e-6)");
   o.rtol_opt = sub->add_option("--rtol", o.rtol, "BDF relative tolerance, [1e-10, 1e-3] (default 5e-7)");
-  sub->add_option("--links", o.links, "Number of links N, [30, 53]; sets the pretension")->capture_default_str();
+  sub->add_option("--links", o.links, "Number of links N, [36, 53]; sets the pretension")->capture_default_str();
   sub->add_option("--sample", o.sample_s, "Output interval [s], [1e-6, t-end]")->capture_default_str();
   sub->add_option("--tau-in", o.tau_in_Nm, "Driver torque [N m], [-1000, 1000]")->capture_default_str();
   sub->add_option("--tau-load", o.tau_load_Nm, "Load torque on the driven pulley [N m], [-1000, 1000]")->capture_default_str();
@@ -89,7 +89,7 @@ void add_model_options(CLI::App* sub, ModelOptions& o) {
 void validate(const ModelOptions& o) {
   require_range(o.t_end_s, 1e-6, 3600.0, "--t-end", "s");
   require_range(o.sample_s, 1e-6, o.t_end_s, "--sample", "s (and at most --t-end)");
-  require_range(o.links, 30, 53, "--links", "");
+  require_range(o.links, 36, 53, "--links", "");
   require_range(o.tau_in_Nm, -1000, 1000, "--tau-in", "N m");
   require_range(o.tau_load_Nm, -1000, 1000, "--tau-load", "N m");
   require_range(o.ledger_tol, 1e-12, 1.0, "--ledger-tol", "");
