@@ -104,11 +104,18 @@ RunStats simulate(const MbdParams& params, const RunOptions& opt, const SampleSi
     if (on_sample) on_sample(s, model, y.data());
     if (on_progress) on_progress(t);
   };
-  emit(0.0);
-  for (long long k = 1; k <= samples_after_0; ++k) {
-    const double t = std::min(opt.t_end_s, static_cast<double>(k) * sample_s);
-    integ->advance_to(t, y.data());
-    emit(t);
+  try {
+    emit(0.0);
+    for (long long k = 1; k <= samples_after_0; ++k) {
+      const double t = std::min(opt.t_end_s, static_cast<double>(k) * sample_s);
+      integ->advance_to(t, y.data());
+      emit(t);
+    }
+  } catch (RunFailure& e) {
+    static_cast<SolverCounters&>(stats) = integ->counters();
+    stats.wall_s = std::chrono::duration<double>(clock::now() - t_start).count();
+    e.stats = stats;
+    throw;
   }
   static_cast<SolverCounters&>(stats) = integ->counters();
   stats.wall_s = std::chrono::duration<double>(clock::now() - t_start).count();

@@ -218,6 +218,7 @@ RunOutcome run_case(const ModelOptions& o, int friction_case, std::FILE* csv, st
   try {
     out.stats = cvt::mbd::simulate(params, ropt, on_sample, [&](double t) { progress.update(t); });
   } catch (const cvt::mbd::RunFailure& e) {
+    out.stats = e.stats;
     out.failed = true;
     out.fail_t_s = e.t_s;
     out.fail_quantity = e.quantity;

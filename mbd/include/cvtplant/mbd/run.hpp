@@ -41,10 +41,13 @@ struct RunStats : SolverCounters {
   long long jacobian_nnz = 0;
 };
 
-// A run that went bad: the time and the quantity, for the user.
+
+// A run that went bad: the time and the quantity, for the user, and what the
+// run had done until then.
 struct RunFailure : std::runtime_error {
   double t_s;
   std::string quantity;
+  RunStats stats;
   RunFailure(double t, const std::string& q);
 };
 
