@@ -35,7 +35,7 @@ for c in 1 2; do
   "$cli" mbd --case "$c" --t-end 1 --method rk4 --dt 1e-6 --csv "$work/rk4_c$c.csv" --json >"$work/rk4_c$c.json"
   echo "case $c: reference RK4 dt 5e-7 over 1 s..." >&2
   "$cli" mbd --case "$c" --t-end 1 --method rk4 --dt 5e-7 --csv "$work/ref_c$c.csv" --json >"$work/ref_c$c.json"
-  for r in 5e-7 1e-8 1e-10; do
+  for r in 5e-7 1e-8 3e-10 1e-10; do
     echo "case $c: BDF rtol $r over 1 s..." >&2
     "$cli" mbd --case "$c" --t-end 1 --rtol "$r" --csv "$work/bdf_c${c}_$r.csv" --json >"$work/bdf_c${c}_$r.json"
   done
@@ -75,7 +75,7 @@ print("|---|---|---|---|---|---|---|")
 for c in (1, 2):
     ref = load(f"{w}/ref_c{c}.csv")
     rk4 = json.load(open(f"{w}/rk4_c{c}.json"))
-    rows = [(f"RK4 dt 1e-6", f"{w}/rk4_c{c}")] + [(f"BDF rtol {r}", f"{w}/bdf_c{c}_{r}") for r in ("5e-7", "1e-8", "1e-10")]
+    rows = [(f"RK4 dt 1e-6", f"{w}/rk4_c{c}")] + [(f"BDF rtol {r}", f"{w}/bdf_c{c}_{r}") for r in ("5e-7", "1e-8", "3e-10", "1e-10")]
     for name, base in rows:
         j = json.load(open(base + ".json"))
         e = errors(base + ".csv", ref)

@@ -81,6 +81,9 @@ class Bdf final : public Integrator {
     LS_ = SUNLinSol_KLU(y_, A_, ctx_);
     if (A_ == nullptr || LS_ == nullptr) throw RunFailure(t0, "KLU sparse solver could not be created");
     install_fast_matrix_kernels(A_);
+    // AMD ordering: it puts the dense pulley and sheave rows and columns last,
+    // where COLAMD's fill made clamped-sheave runs 2.7x slower.
+    check(SUNLinSol_KLUSetOrdering(LS_, 0), "SUNLinSol_KLUSetOrdering");
     check(CVodeSetLinearSolver(mem_, LS_, A_), "CVodeSetLinearSolver");
     check(CVodeSetJacFn(mem_, &Bdf::jac), "CVodeSetJacFn");
   }

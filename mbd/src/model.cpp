@@ -54,6 +54,7 @@ ChainModel::ChainModel(const MbdParams& p) : p_(p), geo_(p.r1_m, p.r2_m, p.cente
         require(f->points[k].second > 0 && (k == 0 || f->points[k].first > f->points[k - 1].first),
                 "clamping forces > 0 at increasing times");
     require(p.sheave_mass_kg > 0 && p.sheave_damping_Ns_m >= 0, "sheave mass > 0, damping >= 0");
+    require(p.sheave_stop_m > 0 && p.sheave_stop_N_m >= 0, "sheave stops > 0");
   }
   n_links_ = p.links;
   sheave_base_ = 6 * n_links_ + 4;
@@ -91,6 +92,13 @@ ChainModel::ChainModel(const MbdParams& p) : p_(p), geo_(p.r1_m, p.r2_m, p.cente
     pc.reject_radius_m = clamped() ? geo_.r_m[j] + 0.05 : geo_.r_m[j] * 1.01;
   }
   build_pattern();
+}
+
+// docs/mbd.md#clamped-sheaves: the ratio end stops, a stiff spring beyond +-sheave_stop_m.
+double ChainModel::stop_force(double opening_m) const {
+  if (opening_m > p_.sheave_stop_m) return -p_.sheave_stop_N_m * (opening_m - p_.sheave_stop_m);
+  if (opening_m < -p_.sheave_stop_m) return -p_.sheave_stop_N_m * (opening_m + p_.sheave_stop_m);
+  return 0.0;
 }
 
 double ChainModel::clamp_force(int j, double t_s) const {
@@ -244,7 +252,8 @@ bool ChainModel::rhs(double t_s, const double* y, double* dydt) const {
       const double rate = y[sheave_rate(j)];
       const double clamp = clamp_force(j, t_s);
       dydt[sheave_opening(j)] = rate;
-      dydt[sheave_rate(j)] = (axial[j] - clamp - p_.sheave_damping_Ns_m * rate) / p_.sheave_mass_kg;
+      dydt[sheave_rate(j)] =
+          (axial[j] - clamp - p_.sheave_damping_Ns_m * rate + stop_force(y[sheave_opening(j)])) / p_.sheave_mass_kg;
       p_damp += p_.sheave_damping_Ns_m * rate * rate;
       p_clamp -= clamp * rate;
     }
@@ -409,6 +418,8 @@ void ChainModel::jacobian(double t_s, const double* y, double* values) const {
       const double rate = y[sheave_rate(j)];
       at(sheave_opening(j), sheave_rate(j)) = 1.0;
       at(sheave_rate(j), sheave_rate(j)) = -p_.sheave_damping_Ns_m / p_.sheave_mass_kg;
+      if (std::fabs(y[sheave_opening(j)]) > p_.sheave_stop_m)
+        at(sheave_rate(j), sheave_opening(j)) -= p_.sheave_stop_N_m / p_.sheave_mass_kg;
       at(ledger(3), sheave_rate(j)) += 2.0 * p_.sheave_damping_Ns_m * rate;
       at(ledger(4), sheave_rate(j)) -= clamp_force(j, t_s);
     }
@@ -478,6 +489,8 @@ Sample ChainModel::sample(double t_s, const double* y) const {
     for (int j = 0; j < 2; ++j) {
       const double rate = y[sheave_rate(j)];
       e_kin += 0.5 * p_.sheave_mass_kg * rate * rate;
+      const double over = std::fabs(y[sheave_opening(j)]) - p_.sheave_stop_m;
+      if (over > 0) e_el += 0.5 * p_.sheave_stop_N_m * over * over;
     }
   out.E_kin_J = e_kin;
   out.E_el_J = e_el;

@@ -1,6 +1,7 @@
 // `cvtplant mbd figures`: the seed's Figs. 13 and 14 (pulley speeds and driver
 // axial force, cases 1 and 2) and a picture of the chain on the pulleys, as
 // PNG through gnuplot (docs/cli.md#mbd-figures, docs/mbd.md#figures).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -114,14 +115,29 @@ std::string chain_picture(const std::string& d, const ModelOptions& m, int c, co
   }
   const cvt::mbd::MbdParams p = params_for(m, c);
   const cvt::mbd::DriveGeometry g(p.r1_m, p.r2_m, p.center_distance_m);
+  // Frame: both pulleys and every link, 2 cm around.
+  double x_lo = -g.r_m[0], x_hi = g.center_distance_m + g.r_m[1], y_lo = -g.r_m[1], y_hi = g.r_m[1];
+  for (const auto& l : r.picture)
+    for (const double x : {l.rear_x_m, l.front_x_m}) {
+      x_lo = std::min(x_lo, x);
+      x_hi = std::max(x_hi, x);
+    }
+  for (const auto& l : r.picture)
+    for (const double y : {l.rear_y_m, l.front_y_m}) {
+      y_lo = std::min(y_lo, y);
+      y_hi = std::max(y_hi, y);
+    }
+  x_lo -= 0.02;
+  x_hi += 0.02;
+  y_lo -= 0.02;
+  y_hi += 0.02;
   auto s = open_text(d + "/" + tag + ".gp");
   s << "set terminal pngcairo size 1300,560 font 'DejaVu Sans,11' noenhanced\nset output '" << png << "'\n"
     << "set title \"Chain on the pulleys at t = " << fmt(r.picture_t_s) << " s, seed " << case_label(c) << ", "
     << m.links << " links, " << m.sheaves << " sheaves, " << method_label(m)
     << "\\nlinks drawn from rear to front pin (dot: the bolt at the front pin), thin lines: the joints\"\n"
     << "set size ratio -1\nset grid\nset xlabel 'x [m]'\nset ylabel 'y [m]'\nset key outside right\n"
-    << "set xrange [" << -g.r_m[0] - 0.05 << ":" << g.center_distance_m + g.r_m[1] + 0.05 << "]\n"
-    << "set yrange [" << -g.r_m[1] - 0.05 << ":" << g.r_m[1] + 0.05 << "]\n"
+    << "set xrange [" << x_lo << ":" << x_hi << "]\nset yrange [" << y_lo << ":" << y_hi << "]\n"
     << "set parametric\nset trange [0:2*pi]\n"
     << "plot " << g.r_m[0] << "*cos(t), " << g.r_m[0] << "*sin(t) lc rgb '#999999' dt 3 title 'pitch circles', "
     << g.center_distance_m << "+" << g.r_m[1] << "*cos(t), " << g.r_m[1]

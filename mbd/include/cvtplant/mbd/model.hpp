@@ -120,6 +120,7 @@ class ChainModel {
   std::string state_problem(const double* y) const;
 
   double clamp_force(int j, double t_s) const;
+  double stop_force(double opening_m) const;  // the movable sheave's end stops [N]
 
  private:
   void build_pattern();

@@ -63,6 +63,11 @@ struct MbdParams {
   ForceProfile clamp2_N;  // driven; empty: clamp1 times the static thrust ratio theta2/theta1
   double sheave_mass_kg = 2.0;         // movable sheave (the real-time plant's value)
   double sheave_damping_Ns_m = 1045.0;  // zeta ~ 0.3 against the wrap's axial stiffness
+  // Ratio end stops: the movable sheave travels +-2 tan(beta0) x 25 mm, the
+  // real-time plant's +-25 mm of chain travel in the groove (hub and rim),
+  // against a stiff stop (its 1e7 N/m radial stop seen axially).
+  double sheave_stop_m = 0.013397459621556135;
+  double sheave_stop_N_m = 3.5e7;
   // --- start-up (docs/mbd.md#start-up): chain wrapped on the pitch line,
   // pulleys held, a light drag on the links while it settles; released at t = 0.
   double settle_s = 0.1;
