@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -55,6 +56,8 @@ RunStats simulate(const MbdParams& params, const RunOptions& opt, const SampleSi
 
   using clock = std::chrono::steady_clock;
   const auto t_start = clock::now();
+  const std::clock_t cpu_start = std::clock();
+  const auto cpu_seconds = [&] { return static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC; };
   // docs/mbd.md#start-up: the same settle for every method and tolerance, so
   // all runs of a case start from the same released state.
   if (params.settle_s > 0) {
@@ -114,11 +117,13 @@ RunStats simulate(const MbdParams& params, const RunOptions& opt, const SampleSi
   } catch (RunFailure& e) {
     static_cast<SolverCounters&>(stats) = integ->counters();
     stats.wall_s = std::chrono::duration<double>(clock::now() - t_start).count();
+    stats.cpu_s = cpu_seconds();
     e.stats = stats;
     throw;
   }
   static_cast<SolverCounters&>(stats) = integ->counters();
   stats.wall_s = std::chrono::duration<double>(clock::now() - t_start).count();
+  stats.cpu_s = cpu_seconds();
   return stats;
 }
 

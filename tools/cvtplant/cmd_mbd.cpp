@@ -252,6 +252,7 @@ nlohmann::json summary_json(const ModelOptions& o, int friction_case, const RunO
   j["sample_s"] = o.sample_s;
   j["samples"] = st.samples;
   j["wall_s"] = st.wall_s;
+  j["cpu_s"] = st.cpu_s;
   j["settle_wall_s"] = st.settle_wall_s;
   j["steps"] = st.steps;
   j["rhs_evals"] = st.rhs_evals;

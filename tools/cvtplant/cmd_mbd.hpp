@@ -71,7 +71,7 @@ RunOutcome run_case(const ModelOptions& o, int friction_case, std::FILE* csv, st
 // `cvtplant mbd figures` (cmd_mbd_figures.cpp).
 struct FigureOptions {
   std::string out_dir;
-  double picture_t_s = -1;  // < 0: the end of the run
+  double picture_t_s = -1;  // -1 (not given): the end of the run
   bool json = false;
   ModelOptions model;
 };

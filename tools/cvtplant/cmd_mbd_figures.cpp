@@ -167,10 +167,8 @@ void add_figure_options(CLI::App* sub, FigureOptions& o) {
 
 int run_figures(const FigureOptions& o) {
   validate(o.model);
-  if (o.picture_t_s >= 0 || o.picture_t_s != -1) {
-    if (!(o.picture_t_s >= 0 && o.picture_t_s <= o.model.t_end_s))
-      throw UsageError{"--picture-t: " + fmt(o.picture_t_s) + " is outside [0, --t-end]"};
-  }
+  if (o.picture_t_s != -1 && !(o.picture_t_s >= 0 && o.picture_t_s <= o.model.t_end_s))
+    throw UsageError{"--picture-t: " + fmt(o.picture_t_s) + " is outside [0, --t-end]"};
   std::error_code ec;
   std::filesystem::create_directories(o.out_dir, ec);
   if (ec || !std::filesystem::is_directory(o.out_dir))

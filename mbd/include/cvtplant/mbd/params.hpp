@@ -48,7 +48,7 @@ struct MbdParams {
   double r1_m = 0.0762;  // driver pitch radius (bolt unloaded touches both flanks here)
   double r2_m = 0.1143;  // driven pitch radius
   // --- choices the seed leaves open (docs/mbd.md#open-choices)
-  int links = 44;                  // N: fills the pitch line with ~580 N of pretension
+  int links = 44;                  // N: fills the pitch line with about 520 N of pretension
   double link_inertia_kgm2 = -1;   // <= 0: slender bar, m L^2 / 12
   bool sheave_deformation = true;  // seed Eq. 3-4 on both pulleys
   // --- friction (seed Eq. 6, Table 2), the core's laws and sign smoothing

@@ -34,6 +34,9 @@ struct SolverCounters {
 struct RunStats : SolverCounters {
   long long samples = 0;
   double wall_s = 0, settle_wall_s = 0;
+  // CPU time of the process over the run [s]: on a busy host, what the wall
+  // time would be on an idle core.
+  double cpu_s = 0;
   double ledger_residual_max_rel = 0;  // max over samples of |ledger residual| / ledger scale
   double energy0_J = 0;                // E_kin + E_el at the release
   double ledger_floor_J = 0;           // smallest ledger scale (see ledger_scale_J)
