@@ -2,6 +2,7 @@
 // other, determinism (docs/mbd.md#energy-ledger, docs/mbd.md#tolerances).
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -93,13 +94,22 @@ TEST_CASE("BDF and the seed's RK4 (dt 1e-6) agree sample by sample") {
   o.dt_s = 1e-6;
   const Recorded rk4 = record(seed_case(2), o);
   REQUIRE(bdf.samples.size() == rk4.samples.size());
+  // BDF at its default rtol (5e-7) and RK4 differ by about 1e-8 here; 1e-7
+  // leaves a factor of ten.
+  double worst[3] = {0, 0, 0};
   for (std::size_t k = 1; k < bdf.samples.size(); ++k) {
     const Sample &a = bdf.samples[k], &b = rk4.samples[k];
     CAPTURE(a.t_s);
-    CHECK(std::fabs(a.omega_rad_s[0] - b.omega_rad_s[0]) < 1e-6 * (1.0 + std::fabs(b.omega_rad_s[0])));
-    CHECK(std::fabs(a.omega_rad_s[1] - b.omega_rad_s[1]) < 1e-6 * (1.0 + std::fabs(b.omega_rad_s[1])));
-    CHECK(rel_diff(a.F_ax_N[0], b.F_ax_N[0]) < 1e-5);
+    const double d[3] = {std::fabs(a.omega_rad_s[0] - b.omega_rad_s[0]) / (1.0 + std::fabs(b.omega_rad_s[0])),
+                         std::fabs(a.omega_rad_s[1] - b.omega_rad_s[1]) / (1.0 + std::fabs(b.omega_rad_s[1])),
+                         rel_diff(a.F_ax_N[0], b.F_ax_N[0])};
+    CHECK(d[0] < 1e-7);
+    CHECK(d[1] < 1e-7);
+    CHECK(d[2] < 1e-7);
+    for (int i = 0; i < 3; ++i) worst[i] = std::max(worst[i], d[i]);
   }
+  MESSAGE("BDF against RK4 dt 1e-6 over 20 ms: omega1 " << worst[0] << ", omega2 " << worst[1] << " (of 1 + |omega|), F_ax1 "
+                                                        << worst[2] << " (relative)");
   CHECK(rk4.stats.steps == 20000);
   CHECK(rk4.stats.rhs_evals == 80000);
 }

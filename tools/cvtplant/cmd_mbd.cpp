@@ -76,7 +76,7 @@ void add_model_options(CLI::App* sub, ModelOptions& o) {
       ->capture_default_str()
       ->check(CLI::IsMember({"bdf", "rk4"}));
   o.dt_opt = sub->add_option("--dt", o.dt_s, "RK4 step [s], [1e-8, 1e-4] (default 1e-6)");
-  o.rtol_opt = sub->add_option("--rtol", o.rtol, "BDF relative tolerance, [1e-10, 1e-3] (default 5e-7)");
+  o.rtol_opt = sub->add_option("--rtol", o.rtol, "BDF relative tolerance, [1e-11, 1e-3] (default 5e-7)");
   sub->add_option("--links", o.links, "Number of links N, [36, 53]; sets the pretension")->capture_default_str();
   sub->add_option("--sample", o.sample_s, "Output interval [s], [1e-6, t-end]")->capture_default_str();
   sub->add_option("--tau-in", o.tau_in_Nm, "Driver torque [N m], [-1000, 1000]")->capture_default_str();
@@ -97,7 +97,7 @@ void validate(const ModelOptions& o) {
   require_range(static_cast<double>(o.max_rows), 1, 1e9, "--max-rows", "");
   if (o.method == "bdf") {
     if (o.dt_opt != nullptr && o.dt_opt->count() > 0) throw UsageError{"--dt applies to --method rk4 only"};
-    require_range(o.rtol, 1e-10, 1e-3, "--rtol", "");
+    require_range(o.rtol, 1e-11, 1e-3, "--rtol", "");
   } else {
     if (o.rtol_opt != nullptr && o.rtol_opt->count() > 0) throw UsageError{"--rtol applies to --method bdf only"};
     require_range(o.dt_s, 1e-8, 1e-4, "--dt", "s");
