@@ -8,11 +8,13 @@
 #include "cvtplant/analysis/errors.hpp"
 #include "cvtplant/analysis/rom_scenes.hpp"
 #include "cvtplant/analysis/systems.hpp"
+#include "cvtplant/scene/builtin_scenes.hpp"
 
 using namespace cvt::analysis;
 
 TEST_CASE("ROM signals: 1 ms samples; the driver axial force stays at the 3.3 kN command") {
-  const RomSeries r = rom_scene_series("seed-case1", {"F_ax", "torque_transmitted"}, 2.0);
+  const cvt::Scene& seed1 = *cvt::find_builtin_scene("seed-case1");
+  const RomSeries r = rom_scene_series(seed1, "seed-case1", {"F_ax", "torque_transmitted"}, 2.0);
   CHECK(r.fault == "none");
   CHECK(r.frame_s == 1e-3);
   REQUIRE(r.t.size() == 2001);
@@ -24,8 +26,32 @@ TEST_CASE("ROM signals: 1 ms samples; the driver axial force stays at the 3.3 kN
   // The torque does move (the driveline's torsional transient): > 10 N m range.
   const auto& tq = r.signal.at("torque_transmitted");
   CHECK(*std::max_element(tq.begin(), tq.end()) - *std::min_element(tq.begin(), tq.end()) > 10.0);
-  CHECK_THROWS_AS(rom_scene_series("seed-case1", {"nope"}, 1.0), InputError);
-  CHECK_THROWS_AS(rom_scene_series("no-such-scene", {"F_ax"}, 1.0), InputError);
+  CHECK_THROWS_AS(rom_scene_series(seed1, "seed-case1", {"nope"}, 1.0), InputError);
+  cvt::Scene bad = seed1;
+  bad.features = cvt::rom_feature::wedging;  // wedging without the axial feature: no plant
+  CHECK_THROWS_AS(rom_scene_series(bad, "bad", {"F_ax"}, 1.0), InputError);
+}
+
+TEST_CASE("ROM signals run every feature set: chordal action makes the transmitted torque ripple") {
+  cvt::Scene s = *cvt::find_builtin_scene("seed-case1");
+  s.substeps = 4;  // chordal action needs >= 4 substeps (docs/rom.md#polygon)
+  const RomSeries plain = rom_scene_series(s, "plain", {"omega1"}, 1.0);
+  s.features |= cvt::rom_feature::polygon;
+  const RomSeries poly = rom_scene_series(s, "polygon", {"omega1"}, 1.0);
+  REQUIRE(plain.fault == "none");
+  REQUIRE(poly.fault == "none");
+  REQUIRE(plain.t.size() == poly.t.size());
+  // The effective driver radius r1 cos(psi) is smaller than r1, so the
+  // same torque accelerates the driver differently: the runs must differ.
+  CHECK(plain.signal.at("omega1").back() != poly.signal.at("omega1").back());
+}
+
+TEST_CASE("a plant scene with time-varying inputs is not a model for the spectrum tools") {
+  CHECK_THROWS_AS(rom_model(*cvt::find_builtin_scene("tip-in"), "tip-in"), InputError);
+  const Model m = rom_model(*cvt::find_builtin_scene("gross-slip"), "gross-slip");
+  CHECK(m.dim == 6);
+  CHECK(m.state_names.front() == "omega1");
+  CHECK(m.default_params.at("clamp_N") == 1000.0);
 }
 
 TEST_CASE("ROM spectrum (seed-case1): axial exponents exact, the rest equal J's eigenvalues at the relative "
@@ -35,7 +61,7 @@ TEST_CASE("ROM spectrum (seed-case1): axial exponents exact, the rest equal J's 
   // this suite short.
   for (const char* name : {"seed-case1"}) {
     CAPTURE(name);
-    const Scene& s = find_scene(name);
+    const Model& s = find_model(name);
     BenettinOptions o = s.defaults;  // transient 30 s (ros2); dt, QR interval from the stiffness
     // Warm-up 5 s: the deviation vectors must separate the symmetry direction
     // from the torsional pair, which decays at only ~0.95 1/s (with 1 s the
@@ -71,7 +97,7 @@ TEST_CASE("ROM spectrum (seed-case1): axial exponents exact, the rest equal J's 
 }
 
 TEST_CASE("ROM lyapunov scenes refuse a wrong initial state and unknown parameters") {
-  const Scene& s = find_scene("seed-case1");
+  const Model& s = find_model("seed-case1");
   BenettinOptions o = s.defaults;
   o.t_transient = 0;
   o.t_warmup = 0;

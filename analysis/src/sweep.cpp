@@ -70,7 +70,7 @@ std::vector<double> local_maxima(const std::vector<double>& rows, int dim, int s
 }  // namespace
 
 std::vector<SweepPoint> run_sweep(const SweepSpec& spec, int shard_i, int shard_n, int jobs) {
-  const Scene& scene = find_scene(spec.scene);
+  const Model& scene = spec.model != nullptr ? *spec.model : find_model(spec.scene);
   if (shard_n < 1 || shard_i < 0 || shard_i >= shard_n) throw InputError("shard must be i/N with 0 <= i < N");
   if (spec.bif_state < 0 || spec.bif_state >= scene.dim)
     throw InputError("state index must be in 0.." + std::to_string(scene.dim - 1));

@@ -1,4 +1,4 @@
-#include "posix_clock.hpp"
+#include "cvtplant/port/posix_clock.hpp"
 
 #include <cerrno>
 #include <ctime>

@@ -1,4 +1,4 @@
-#include "socketcan_transport.hpp"
+#include "cvtplant/port/socketcan_transport.hpp"
 
 #include <linux/can.h>
 #include <linux/can/error.h>
@@ -14,7 +14,7 @@
 #include <cstring>
 #include <ctime>
 
-#include "posix_clock.hpp"
+#include "cvtplant/port/posix_clock.hpp"
 
 namespace cvt::port {
 

@@ -158,7 +158,7 @@ std::string run_time_history_figure(const std::vector<double>& x, double dt, lon
   return D + "run_time_history.png";
 }
 
-std::vector<std::string> scene_figures(const Scene& sc, const Params& p, const std::vector<double>& x0, double dt,
+std::vector<std::string> model_figures(const Model& sc, const Params& p, const std::vector<double>& x0, double dt,
                                        double t_end, const std::string& out_dir) {
   ensure_dir(out_dir);
   const std::string D = out_dir + "/";

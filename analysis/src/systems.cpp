@@ -127,11 +127,11 @@ StickSlipOscillator<double> make_oscillator(const Params& p, bool stribeck) {
   return StickSlipOscillator<double>(o);
 }
 
-std::vector<Scene>& table() {
-  static std::vector<Scene> t = [] {
-    std::vector<Scene> v;
+std::vector<Model>& table() {
+  static std::vector<Model> t = [] {
+    std::vector<Model> v;
     {
-      Scene s;
+      Model s;
       s.name = "lorenz";
       s.description = "Lorenz (sigma=10, rho=28, beta=8/3)";
       s.dim = 3;
@@ -151,7 +151,7 @@ std::vector<Scene>& table() {
       v.push_back(s);
     }
     {
-      Scene s;
+      Model s;
       s.name = "rossler";
       s.description = "Roessler (a=b=0.2, c=5.7)";
       s.dim = 3;
@@ -171,7 +171,7 @@ std::vector<Scene>& table() {
       v.push_back(s);
     }
     for (int stribeck = 0; stribeck <= 1; ++stribeck) {
-      Scene s;
+      Model s;
       s.name = stribeck ? "oscillator-stribeck" : "oscillator-coulomb";
       s.description = stribeck ? "seed Eq. 9 2-DOF stick-slip oscillator, Stribeck friction (seed sec. 3)"
                                : "seed Eq. 9 2-DOF stick-slip oscillator, constant (Coulomb) friction (seed sec. 3)";
@@ -197,7 +197,7 @@ std::vector<Scene>& table() {
       v.push_back(s);
     }
     {
-      Scene s;
+      Model s;
       s.name = "henon";
       s.description = "Henon map (a=1.4, b=0.3); times are iterations";
       s.is_map = true;
@@ -217,7 +217,7 @@ std::vector<Scene>& table() {
       v.push_back(s);
     }
     {
-      Scene s;
+      Model s;
       s.name = "logistic";
       s.description = "logistic map x -> r x (1-x), r=4; times are iterations";
       s.is_map = true;
@@ -236,7 +236,7 @@ std::vector<Scene>& table() {
       };
       v.push_back(s);
     }
-    add_rom_scenes(v);
+    add_rom_models(v);
     return v;
   }();
   return t;
@@ -244,9 +244,9 @@ std::vector<Scene>& table() {
 
 }  // namespace
 
-const std::vector<Scene>& scenes() { return table(); }
+const std::vector<Model>& models() { return table(); }
 
-void register_scene(Scene s) {
+void register_model(Model s) {
   for (auto& t : table())
     if (t.name == s.name) {
       t = std::move(s);
@@ -255,7 +255,13 @@ void register_scene(Scene s) {
   table().push_back(std::move(s));
 }
 
-const Scene& find_scene(const std::string& name) {
+bool has_model(const std::string& name) {
+  for (const Model& m : table())
+    if (m.name == name) return true;
+  return false;
+}
+
+const Model& find_model(const std::string& name) {
   std::string known;
   for (const auto& s : table()) {
     if (s.name == name) return s;
@@ -264,7 +270,7 @@ const Scene& find_scene(const std::string& name) {
   throw InputError("unknown scene '" + name + "' (known: " + known + ")");
 }
 
-Params merge_params(const Scene& s, const Params& overrides) {
+Params merge_params(const Model& s, const Params& overrides) {
   Params p = s.default_params;
   for (const auto& [k, v] : overrides) {
     if (!p.count(k)) {

@@ -23,7 +23,8 @@ struct SweepAxis {
 SweepAxis parse_axis(const std::string& spec);
 
 struct SweepSpec {
-  std::string scene;
+  std::string scene;              // name written to the output
+  const Model* model = nullptr;   // the model swept; nullptr: find_model(scene)
   Params overrides;
   std::vector<double> x0;  // empty: scene default
   SweepAxis a1;

@@ -22,7 +22,7 @@ std::string run_time_history_figure(const std::vector<double>& x, double dt, lon
                                     const std::string& out_dir);
 
 // Time histories and phase portraits of a scene (seed Figs. 9/10 style).
-std::vector<std::string> scene_figures(const Scene& s, const Params& p, const std::vector<double>& x0, double dt,
+std::vector<std::string> model_figures(const Model& s, const Params& p, const std::vector<double>& x0, double dt,
                                        double t_end, const std::string& out_dir);
 
 // Bifurcation diagram (peaks vs first parameter) and, for 2-D sweeps, the

@@ -5,6 +5,7 @@
 set -u
 BIN="$1"
 TMP="$2"
+SRC="$(cd "$(dirname "$0")/../.." && pwd)"  # the source tree, for the example scene files
 mkdir -p "$TMP"
 fail=0
 
@@ -48,7 +49,7 @@ expect 2 "column is required" -- "$BIN" analyze figures --csv "$TMP/sine.csv" --
 expect 2 "give --csv" -- "$BIN" analyze figures --out-dir "$TMP/bad_fig"
 
 # seed-section4 and the ROM lyapunov scenes (docs/analysis.md#seed-section4, #rom-lyapunov).
-expect 2 "unknown ROM scene 'nope'" -- "$BIN" analyze seed-section4 --scene nope --out-dir "$TMP/s4"
+expect 2 "'nope' is neither a built-in scene" -- "$BIN" analyze seed-section4 --scene nope --out-dir "$TMP/s4"
 expect 2 "unknown signal 'torque'" -- "$BIN" analyze seed-section4 --scene seed-case1 --signals torque --out-dir "$TMP/s4"
 expect 2 "leaves no data" -- "$BIN" analyze seed-section4 --scene seed-case1 --t-end 1 --t-transient 5 --out-dir "$TMP/s4"
 expect 2 "tau must be >= 1" -- "$BIN" analyze seed-section4 --scene seed-case1 --tau 0 --out-dir "$TMP/s4"
@@ -56,6 +57,10 @@ expect 2 "t-end must be > 0" -- "$BIN" analyze seed-section4 --scene seed-case1 
 expect 2 "expected 9 comma-separated values" -- "$BIN" lyapunov --scene seed-case1 --x0 1,2 --t-end 1
 expect 2 "no parameter 'clamp'" -- "$BIN" lyapunov --scene seed-case2 --param clamp=3000 --t-end 1
 expect 2 "clamp" -- "$BIN" lyapunov --scene seed-case1 --param clamp_N=-1 --t-end 1
+# Any plant scene, built-in or a file, is a model if its inputs are constant.
+expect 2 "tau_in varies in time; the spectrum tools need constant inputs" -- "$BIN" lyapunov --scene tip-in --t-end 1
+expect 2 "varies in time" -- "$BIN" lyapunov --scene "$SRC/tools/scenes/vehicle-launch.toml" --t-end 1
+expect 2 "unknown scene 'nope.toml'" -- "$BIN" analyze trajectory --scene nope.toml --t-end 1
 
 # --help on every subcommand: exit 0, a usage text that lists the options.
 for sub in "lyapunov" "analyze" "analyze ami" "analyze fnn" "analyze cao" "analyze lle" "analyze rqa" \

@@ -11,14 +11,14 @@ using namespace cvt::analysis;
 
 TEST_CASE("trajectory sampler returns one row per sample interval") {
   for (const char* name : {"oscillator-coulomb", "oscillator-stribeck"}) {
-    const Scene& s = find_scene(name);
+    const Model& s = find_model(name);
     const auto rows = s.trajectory(s.default_params, s.default_x0, 1e-4, 0, 0.2, 0.05);
     CHECK(rows.size() == 16);
   }
 }
 
 TEST_CASE("Coulomb friction from [0 3 0 6]: all exponents negative, equal to the equilibrium's eigenvalue real parts") {
-  const Scene& s = find_scene("oscillator-coulomb");
+  const Model& s = find_model("oscillator-coulomb");
   BenettinOptions o;
   o.dt = 1e-4;
   o.t_transient = 0;
@@ -39,7 +39,7 @@ TEST_CASE("Coulomb friction from [0 3 0 6]: all exponents negative, equal to the
 }
 
 TEST_CASE("Stribeck friction from [0 3 0 6]: a limit cycle, not chaos") {
-  const Scene& s = find_scene("oscillator-stribeck");
+  const Model& s = find_model("oscillator-stribeck");
   BenettinOptions o;
   o.dt = 1e-3;  // dt/2 changes the exponents by < 1e-8 (docs: dt check)
   o.t_transient = 200;

@@ -1,6 +1,7 @@
 #pragma once
 // Reference systems with public Lyapunov spectra (docs/analysis.md#references)
-// and the scene registry used by `cvtplant lyapunov --scene` and sweeps.
+// and the registry of models used by `cvtplant lyapunov --scene`, trajectories
+// and sweeps.
 #include <Eigen/Core>
 #include <functional>
 #include <map>
@@ -64,9 +65,11 @@ struct Logistic {
 
 using Params = std::map<std::string, double>;
 
-// A scene: something with equations whose spectrum and trajectories can be
-// computed. CVT plant scenes register here later (register_scene).
-struct Scene {
+// A model: equations with named parameters whose Lyapunov spectrum and
+// trajectories the toolkit computes. Not a plant scene (cvt::Scene, inputs
+// over time for a frame-by-frame run): a ROM scene with constant inputs
+// becomes a model through rom_model() (rom_scenes.hpp).
+struct Model {
   std::string name;
   std::string description;
   bool is_map = false;
@@ -83,11 +86,13 @@ struct Scene {
       trajectory;
 };
 
-const std::vector<Scene>& scenes();
+const std::vector<Model>& models();
 // Throws InputError listing the known names.
-const Scene& find_scene(const std::string& name);
-void register_scene(Scene s);
+const Model& find_model(const std::string& name);
+// True if the registry has a model of that name.
+bool has_model(const std::string& name);
+void register_model(Model s);
 // Merges overrides into the scene's defaults; unknown names throw InputError.
-Params merge_params(const Scene& s, const Params& overrides);
+Params merge_params(const Model& s, const Params& overrides);
 
 }  // namespace cvt::analysis
