@@ -1,8 +1,13 @@
-// Explicit instantiations of the core for every scalar type, so that a build of
-// this archive (host or Cortex-M) compiles all of it with the embedded flags
-// and the no-heap link check of the target image sees every code path.
+// Explicit instantiations that make the core archive compile its templates
+// with the build's own flags: the seed oscillator with every method, and the
+// real-time plant's frame stepper with the widest feature set each scalar
+// type has (every feature in double and float, all but wedging in q16.16).
+// The embedded no-heap link check (tests/target, whole archive) then sees the
+// code of every feature; a firmware image still compiles only the plants it
+// names.
 #include "cvtplant/integrate/method.hpp"
 #include "cvtplant/plant/oscillator.hpp"
+#include "cvtplant/plant/rom_sim.hpp"
 #include "cvtplant/scalar/fixed_eigen.hpp"
 #include "cvtplant/scalar/scalar.hpp"
 
@@ -18,5 +23,9 @@ template void step<StickSlipOscillator<float>>(Method, const StickSlipOscillator
                                                StateOf<StickSlipOscillator<float>>&, float);
 template void step<StickSlipOscillator<q16_16>>(Method, const StickSlipOscillator<q16_16>&,
                                                 StateOf<StickSlipOscillator<q16_16>>&, q16_16);
+
+template class RomSimulator<double, rom_feature::all>;
+template class RomSimulator<float, rom_feature::all>;
+template class RomSimulator<q16_16, rom_feature::basic>;
 
 }  // namespace cvt

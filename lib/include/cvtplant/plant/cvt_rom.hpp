@@ -19,6 +19,7 @@
 #include "cvtplant/friction/friction_law.hpp"
 #include "cvtplant/integrate/system.hpp"
 #include "cvtplant/math/detmath.hpp"
+#include "cvtplant/plant/rom_layout.hpp"
 #include "cvtplant/plant/rom_params.hpp"
 #include "cvtplant/scalar/fixed_eigen.hpp"
 #include "cvtplant/scalar/scalar.hpp"
@@ -46,25 +47,6 @@ struct RomUnits<Fixed<FracBits>> {
   static constexpr double length_m = time_s;  // = time unit x 1 m/s
 };
 
-// State layout for a feature mask (docs/rom.md#state).
-template <std::uint32_t F>
-struct RomLayout {
-  static constexpr bool kAxial = (F & rom_feature::axial) != 0;
-  static constexpr bool kRoad = (F & rom_feature::road_load) != 0;
-  static constexpr bool kDeform = (F & rom_feature::deformation) != 0;
-  static constexpr bool kPolygon = (F & rom_feature::polygon) != 0;
-  static constexpr bool kWedge = (F & rom_feature::wedging) != 0;
-  static_assert(!kWedge || kAxial, "the wedging feature needs the axial feature (docs/rom.md#wedging)");
-  static constexpr int kW1 = 0, kW2 = 1, kX1 = 2, kV1 = 3, kX2 = 4, kV2 = 5;
-  static constexpr int kFh = 6;                       // valid if kAxial
-  static constexpr int kDelta = 7, kDeltaDot = 8;     // valid if kAxial
-  static constexpr int kRho = 9, kRhoDot = 10;        // valid if kWedge
-  static constexpr int kPsi = 6 + (kAxial ? 3 : 0) + (kWedge ? 2 : 0);  // valid if kPolygon
-  static constexpr int kStates = kPsi + (kPolygon ? 1 : 0);
-  static constexpr std::uint32_t kPositionMask = (1u << kX1) | (1u << kX2) | (kAxial ? (1u << kDelta) : 0u) |
-                                                 (kWedge ? (1u << kRho) : 0u) | (kPolygon ? (1u << kPsi) : 0u);
-};
-
 // Everything a frame reports (docs/rom.md#outputs). Forces in N, torques in N m.
 template <class T>
 struct RomOutputs {
@@ -81,6 +63,11 @@ struct RomOutputs {
   T v_rel1_m_s{}, v_rel2_m_s{};
   bool stick1 = false, stick2 = false;
 };
+
+// The type the energy bookkeeping runs in: float for fixed point (energies of
+// 1e5 J do not fit q16.16) and the plant's own type otherwise.
+template <class T>
+using RomAcc = std::conditional_t<std::is_same_v<T, double>, double, float>;
 
 // Instantaneous power terms [W] (docs/rom.md#energy-balance): dE/dt =
 // input + actuator - load - friction_loss - damping_loss.
@@ -105,9 +92,7 @@ class CvtRom {
   static_assert(!L::kWedge || !U::kScaled, "the wedging feature runs in floating point only");
   using State = Eigen::Matrix<T, kStates, 1>;
   using Jacobian = Eigen::Matrix<T, kStates, kStates>;
-  // Energy bookkeeping runs in float for fixed point (energies of 1e5 J do
-  // not fit q16.16) and in the plant's own type otherwise.
-  using Acc = std::conditional_t<std::is_same_v<T, double>, double, float>;
+  using Acc = RomAcc<T>;
 
   RomInputs<T> inputs;
 
@@ -129,10 +114,10 @@ class CvtRom {
     double b1 = p.beta0_rad, b2 = p.beta0_rad;
     if constexpr (L::kDeform) {
       const double ratio = p.r1_m / p.r2_m;
-      const double Delta = 0.00045 / dm::exp(0.55 * log_pos(ratio));
-      const double theta_c = 3.14159265358979323846 * ratio / 3.0 + 23.0 * 3.14159265358979323846 / 180.0;
-      b1 += 0.5 * Delta * dm::sin(p.zeta1_rad - theta_c + 1.57079632679489661923);
-      b2 += 0.5 * Delta * dm::sin(p.zeta2_rad - theta_c + 1.57079632679489661923);
+      const double Delta = seed::deformation_amplitude_rad(ratio);
+      const double theta_c = seed::deformation_centre_rad(ratio);
+      b1 = seed::flank_angle_rad(p.beta0_rad, Delta, theta_c, p.zeta1_rad);
+      b2 = seed::flank_angle_rad(p.beta0_rad, Delta, theta_c, p.zeta2_rad);
     }
     c_.inv_cos1 = T(1.0 / dm::cos(b1));
     c_.inv_cos2 = T(1.0 / dm::cos(b2));
@@ -163,7 +148,7 @@ class CvtRom {
     }
     if constexpr (L::kPolygon) {
       // docs/rom.md#polygon: half the angle one link subtends on the driver.
-      c_.alpha = T(asin_small(p.pitch_m / (2.0 * p.r1_m)));
+      c_.alpha = T(dm::asin_setup(p.pitch_m / (2.0 * p.r1_m)));
     }
     if constexpr (L::kWedge) {
       // docs/rom.md#wedging: r2(rho) from chain length conservation, as the
@@ -322,7 +307,7 @@ class CvtRom {
   // Effective driver radius r1e: r1, or r1 cos(psi) with chordal action.
   template <class S>
   S driver_radius(const Eigen::Matrix<S, kStates, 1>& x) const {
-    if constexpr (L::kPolygon) return pitch_radius1(x) * dm::cos(x(L::kPsi));
+    if constexpr (L::kPolygon) return pitch_radius1(x) * cos(x(L::kPsi));
     return pitch_radius1(x);
   }
 
@@ -369,7 +354,7 @@ class CvtRom {
   S load_torque(const S& w2) const {
     S tl(inputs.tau_load_Nm);
     if constexpr (L::kRoad) {
-      tl = tl + S(c_.T0) * dm::tanh(w2 * S(c_.inv_w_eps)) + S(c_.cv) * w2 + S(c_.ca) * w2 * dm::abs(w2);
+      tl = tl + S(c_.T0) * tanh(w2 * S(c_.inv_w_eps)) + S(c_.cv) * w2 + S(c_.ca) * w2 * abs(w2);
     }
     return tl;
   }
@@ -442,8 +427,8 @@ class CvtRom {
     const T N1 = fax * c_.inv_cos1, N2 = fax * c_.inv_cos2;
     T s1 = c.lump1.slope, s2 = c.lump2.slope;
     if (w_slope_floor) {
-      if (dm::abs(c.v_rel1) < c_.floor_speed && s1 < c_.slope_floor) s1 = c_.slope_floor;
-      if (dm::abs(c.v_rel2) < c_.floor_speed && s2 < c_.slope_floor) s2 = c_.slope_floor;
+      if (abs(c.v_rel1) < c_.floor_speed && s1 < c_.slope_floor) s1 = c_.slope_floor;
+      if (abs(c.v_rel2) < c_.floor_speed && s2 < c_.slope_floor) s2 = c_.slope_floor;
     }
     // dF_i/dv_rel_i = -phi'(v_rel) N_i, per time unit: phi' N alone (5e6
     // N s/m at 3.3 kN) would not fit q16.16, phi' per time unit does.
@@ -458,8 +443,8 @@ class CvtRom {
     if (free2) {
       T dtl = T(0);
       if constexpr (L::kRoad) {
-        const T th = dm::tanh(w2 * c_.inv_w_eps);
-        dtl = c_.T0 * (T(1) - th * th) * c_.inv_w_eps + c_.cv + (c_.ca + c_.ca) * dm::abs(w2);
+        const T th = tanh(w2 * c_.inv_w_eps);
+        dtl = c_.T0 * (T(1) - th * th) * c_.inv_w_eps + c_.cv + (c_.ca + c_.ca) * abs(w2);
       }
       rw2[L::kW2] = per_tau(-dtl * c_.inv_J2);
       rw2[L::kX1] = per_tau(c_.r2 * c_.k1 * c_.inv_J2);
@@ -487,7 +472,7 @@ class CvtRom {
     }
     T sin_psi = T(0);
     if constexpr (L::kPolygon) {
-      sin_psi = dm::sin(x(L::kPsi));
+      sin_psi = sin(x(L::kPsi));
       // dv_rel/dpsi = -dr1e/dpsi w1 = r1 sin(psi) w1
       const T dv = c_.r1 * sin_psi * w1;
       dF1[L::kPsi] = g1 * dv;
@@ -545,7 +530,7 @@ class CvtRom {
     const T inv_cos[2] = {c_.inv_cos1, c_.inv_cos2};
     for (int i = 0; i < 2; ++i) {
       const T vt = (vc + x(v_col[i])) - v1;
-      if (!(dm::abs(vt) < c_.floor_speed)) continue;
+      if (!(abs(vt) < c_.floor_speed)) continue;
       const T slope = friction_characteristic_slope(c_.friction, vt);
       if (!(slope < c_.slope_floor)) continue;
       // Extra dF_i/dv_t (negative: friction opposes slip), per time unit.
@@ -578,8 +563,8 @@ class CvtRom {
     o.radius2_m = r2;
     o.geometric_ratio = r2 / o.radius1_m;
     const T w_tiny = T(1e-3);
-    o.speed_ratio = dm::abs(w2) < w_tiny ? T(0) : w1 / w2;
-    o.slip = dm::abs(v1) < w_tiny ? T(0) : (v1 - vc) / v1;
+    o.speed_ratio = abs(w2) < w_tiny ? T(0) : w1 / w2;
+    o.slip = abs(v1) < w_tiny ? T(0) : (v1 - vc) / v1;
     o.clamp_force_N = fax;
     o.v_rel1_m_s = (vc + x(L::kV1)) - v1;
     o.v_rel2_m_s = (vc + x(L::kV2)) - v1;
@@ -597,8 +582,8 @@ class CvtRom {
     o.tau_in_Nm = c_.hold1 ? o.torque_transmitted_Nm : inputs.tau_in_Nm;
     const T strand = c_.k1 * x(L::kX1) + c_.c1 * x(L::kV1) + (c_.k1 * x(L::kX2) + c_.c1 * x(L::kV2));
     o.tau_load_Nm = c_.hold2 ? r2 * strand : load_torque(w2);
-    o.stick1 = dm::abs(o.v_rel1_m_s) < c_.stick_speed;
-    o.stick2 = dm::abs(o.v_rel2_m_s) < c_.stick_speed;
+    o.stick1 = abs(o.v_rel1_m_s) < c_.stick_speed;
+    o.stick2 = abs(o.v_rel2_m_s) < c_.stick_speed;
     return o;
   }
 
@@ -755,7 +740,7 @@ class CvtRom {
     // phi(|v|)/|v|; its limit phi'(0) at |v| = 0, where sqrt has no derivative.
     S q(c_.q0);
     if (s2 > S(T(1e-24))) {
-      const S speed = dm::sqrt(s2);
+      const S speed = sqrt(s2);
       q = friction_characteristic(c_.friction, speed) / speed;
     }
     // seed Eq. 7 solved for N: N (1 + tan(beta) q gr) = F_ax / cos(beta).
@@ -785,33 +770,15 @@ class CvtRom {
                        S(c_.inv_mr);
   }
 
-  // Set-up helpers in double (never per step).
-  static double log_pos(double v) {
-    // ln(v) for v in (0, 1e6] by Newton on exp: set-up only, avoids <cmath>
-    // so the determinism of the constants rests on dm::exp alone.
-    double y = 0.0;
-    for (int i = 0; i < 60; ++i) y -= 1.0 - v / dm::exp(y);
-    return y;
-  }
   // Driven pitch radius that keeps the chain length of the set-up radii when
-  // the driver radius is r1 + rho (set-up only): Newton on
-  // L = r1 theta1 + r2 theta2 + 2 sqrt(C^2 - (r2 - r1)^2), dL/dr2 = theta2.
+  // the driver radius is r1 + rho (set-up only): Newton on the chain length,
+  // dL/dr2 = theta2 (docs/rom.md#wedging).
   static double driven_radius_exact(const RomParams& p, double rho) {
-    const double pi = 3.14159265358979323846, C = p.center_distance_m;
-    auto length = [&](double a, double b) {
-      const double s = asin_small((b - a) / C);
-      return a * (pi - 2.0 * s) + b * (pi + 2.0 * s) + 2.0 * dm::sqrt(C * C - (b - a) * (b - a));
-    };
-    const double L0 = length(p.r1_m, p.r2_m), a = p.r1_m + rho;
+    const double C = p.center_distance_m;
+    const double L0 = seed::chain_length_m(p.r1_m, p.r2_m, C), a = p.r1_m + rho;
     double b = p.r2_m;
-    for (int i = 0; i < 30; ++i) b -= (length(a, b) - L0) / (pi + 2.0 * asin_small((b - a) / C));
+    for (int i = 0; i < 30; ++i) b -= (seed::chain_length_m(a, b, C) - L0) / seed::wrap_angle_driven_rad(a, b, C);
     return b;
-  }
-  static double asin_small(double s) {
-    // asin by Newton on sin, |s| < 0.9 (set-up only).
-    double y = s;
-    for (int i = 0; i < 40; ++i) y -= (dm::sin(y) - s) / dm::cos(y);
-    return y;
   }
 
   struct Consts {

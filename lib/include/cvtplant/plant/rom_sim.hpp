@@ -68,6 +68,7 @@ struct RomSimConfig {
 template <class T, std::uint32_t Features = 0>
 class RomSimulator {
  public:
+  using Scalar = T;
   using Plant = CvtRom<T, Features>;
   using State = typename Plant::State;
   using Acc = typename Plant::Acc;
@@ -162,6 +163,9 @@ class RomSimulator {
     return x_;
   }
   const Plant& plant() const { return plant_; }
+  // The plant, for callers that evaluate it on states of their own (the
+  // analysis toolkit); the inputs set here hold until the next frame.
+  Plant& mutable_plant() { return plant_; }
   const EnergyLedger<Acc>& energy() const { return ledger_; }
   RomFault fault() const { return fault_; }
   long frames() const { return frames_; }
