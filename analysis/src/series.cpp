@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "cvtplant/analysis/errors.hpp"
+#include "cvtplant/physics/seed.hpp"
 
 namespace cvt::analysis {
 
@@ -75,7 +76,7 @@ void fft(std::vector<std::complex<double>>& a) {
     j ^= bit;
     if (i < j) std::swap(a[i], a[j]);
   }
-  const double pi = 3.14159265358979323846;
+  const double pi = kPi;
   for (std::size_t len = 2; len <= n; len <<= 1) {
     const double ang = -2 * pi / static_cast<double>(len);
     for (std::size_t i = 0; i < n; i += len) {
@@ -95,7 +96,7 @@ Spectrum periodogram(const std::vector<double>& x) {
   std::size_t nfft = 1;
   while (nfft < 2 * n) nfft <<= 1;
   const double m = mean(x);
-  const double pi = 3.14159265358979323846;
+  const double pi = kPi;
   std::vector<std::complex<double>> a(nfft, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
     const double w = 0.5 - 0.5 * std::cos(2 * pi * static_cast<double>(i) / static_cast<double>(n > 1 ? n - 1 : 1));

@@ -92,19 +92,25 @@ Logistic make_logistic(const Params& p) {
   return s;
 }
 
+// The seed's section-3 values (physics/seed.hpp), as named parameters.
 Params oscillator_params(bool stribeck) {
-  Params p{{"m1_kg", 1},   {"m2_kg", 1},          {"k1_N_m", 25},  {"k2_N_m", 25},     {"c1_Ns_m", 1},
-           {"c2_Ns_m", 1}, {"belt_speed_m_s", 3.5}, {"g_m_s2", 9.81}, {"mu0", 0.25},     {"lambda_s_m", 1e4}};
+  const OscillatorParams<double> o;
+  const FrictionParams<double> f = stribeck ? friction_presets::oscillator_stribeck<double>()
+                                            : friction_presets::oscillator_coulomb<double>();
+  Params p{{"m1_kg", o.m1_kg},     {"m2_kg", o.m2_kg},     {"k1_N_m", o.k1_N_m},
+           {"k2_N_m", o.k2_N_m},   {"c1_Ns_m", o.c1_Ns_m}, {"c2_Ns_m", o.c2_Ns_m},
+           {"belt_speed_m_s", o.belt_speed_m_s},           {"g_m_s2", o.g_m_s2},
+           {"mu0", f.mu0},         {"lambda_s_m", f.lambda_s_m}};
   if (stribeck) {
-    p["sigma"] = 6.5;
-    p["kappa_s_m"] = 5;
-    p["chi_s_m"] = 1;
+    p["sigma"] = f.sigma;
+    p["kappa_s_m"] = f.kappa_s_m;
+    p["chi_s_m"] = f.chi_s_m;
   }
   return p;
 }
 
-// The lead's heap-free plant (lib/include/cvtplant/plant/oscillator.hpp),
-// seed Eq. 9, parameterised from the scene's named parameters.
+// The core's heap-free seed oscillator (lib/include/cvtplant/plant/oscillator.hpp),
+// seed Eq. 9, parameterised from the model's named parameters.
 StickSlipOscillator<double> make_oscillator(const Params& p, bool stribeck) {
   FrictionParams<double> f = stribeck ? friction_presets::oscillator_stribeck<double>()
                                       : friction_presets::oscillator_coulomb<double>();

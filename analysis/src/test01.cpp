@@ -6,6 +6,7 @@
 
 #include "cvtplant/analysis/errors.hpp"
 #include "cvtplant/analysis/series.hpp"
+#include "cvtplant/physics/seed.hpp"
 
 namespace cvt::analysis {
 
@@ -20,7 +21,7 @@ Test01Result test01(const std::vector<double>& x_in, const Test01Options& opt) {
   validate_series(phi, 100, "test01 (after subsampling)");
   const std::size_t N = phi.size();
   const std::size_t ncut = N / 10;
-  const double pi = 3.14159265358979323846;
+  const double pi = kPi;
   const double phi_mean = mean(phi);
   std::mt19937 gen(opt.seed);
   std::uniform_real_distribution<double> uc(pi / 5, 4 * pi / 5);

@@ -1,5 +1,5 @@
 // Lyapunov spectra of the reference systems against public values
-// (../shared/design/analysis-refs.md, docs/analysis.md#validation).
+// (docs/analysis.md#validation lists the published values and their sources).
 #include <doctest/doctest.h>
 
 #include <cmath>

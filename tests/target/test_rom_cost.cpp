@@ -15,7 +15,7 @@ using cvt::port::console;
 
 namespace {
 
-// Issue #3's float goal for the default scene (seed-case1 at the real-time
+// The float goal for the default scene (seed-case1 at the real-time
 // default, one ROS2 step per frame) is 5,000 instructions per frame
 // (docs/rom.md#cost says where they go). Instruction counts under icount are
 // exact for a given compiler, so the goal is asserted.
