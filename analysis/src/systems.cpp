@@ -5,6 +5,7 @@
 
 #include "cvtplant/analysis/errors.hpp"
 #include "cvtplant/analysis/rom_scenes.hpp"
+#include "cvtplant/integrate/explicit_rk.hpp"
 #include "cvtplant/plant/oscillator.hpp"
 
 namespace cvt::analysis {
@@ -18,20 +19,12 @@ std::vector<double> flow_trajectory(const Flow& sys, const std::vector<double>& 
   if (static_cast<int>(x0.size()) != N) throw InputError("x0 needs " + std::to_string(N) + " values");
   if (!(dt > 0) || !(sample_dt > 0) || !(t_end > 0)) throw InputError("trajectory: need dt, sample_dt, t_end > 0");
   V x = Eigen::Map<const V>(x0.data());
-  V k1, k2, k3, k4, xt;
   const long every = std::max(1L, std::lround(sample_dt / dt));
   const long n_tr = std::lround(t_tr / dt), n = std::lround(t_end / dt);
   std::vector<double> out;
   out.reserve(static_cast<std::size_t>(n / every + 1) * N);
   for (long s = 0; s < n_tr + n; ++s) {
-    sys.derivative(x, k1);
-    xt = x + 0.5 * dt * k1;
-    sys.derivative(xt, k2);
-    xt = x + 0.5 * dt * k2;
-    sys.derivative(xt, k3);
-    xt = x + dt * k3;
-    sys.derivative(xt, k4);
-    x += dt / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4);
+    step_rk4(sys, x, dt);
     if (s >= n_tr && (s - n_tr + 1) % every == 0) {
       if (!x.allFinite()) throw std::runtime_error("trajectory became non-finite");
       for (int i = 0; i < N; ++i) out.push_back(x(i));

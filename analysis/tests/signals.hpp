@@ -5,35 +5,20 @@
 #include <vector>
 
 #include "cvtplant/analysis/systems.hpp"
+#include "cvtplant/integrate/explicit_rk.hpp"
 
 namespace testsig {
 
 // Lorenz x sampled every 0.01 after a 50-time-unit transient (RK4 dt=0.005).
 inline std::vector<double> lorenz_x(std::size_t n, double sample_dt = 0.01) {
   cvt::analysis::Lorenz s;
-  Eigen::Vector3d x(1, 1, 1), k1, k2, k3, k4, xt;
+  Eigen::Vector3d x(1, 1, 1);
   const double h = 0.005;
   const int every = static_cast<int>(std::lround(sample_dt / h));
-  for (int i = 0; i < 10000; ++i) {
-    s.derivative(x, k1);
-    xt = x + 0.5 * h * k1;
-    s.derivative(xt, k2);
-    xt = x + 0.5 * h * k2;
-    s.derivative(xt, k3);
-    xt = x + h * k3;
-    s.derivative(xt, k4);
-    x += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
-  }
+  for (int i = 0; i < 10000; ++i) cvt::step_rk4(s, x, h);
   std::vector<double> out;
   for (std::size_t i = 0; out.size() < n; ++i) {
-    s.derivative(x, k1);
-    xt = x + 0.5 * h * k1;
-    s.derivative(xt, k2);
-    xt = x + 0.5 * h * k2;
-    s.derivative(xt, k3);
-    xt = x + h * k3;
-    s.derivative(xt, k4);
-    x += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
+    cvt::step_rk4(s, x, h);
     if ((i + 1) % every == 0) out.push_back(x(0));
   }
   return out;

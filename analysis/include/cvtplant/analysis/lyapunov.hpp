@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "cvtplant/analysis/series.hpp"
+#include "cvtplant/integrate/explicit_rk.hpp"
 
 namespace cvt::analysis {
 
@@ -78,6 +79,36 @@ void qr_renorm(Eigen::Matrix<double, N, N>& Y, Eigen::Matrix<double, N, 1>& logs
   }
   Y = Q;
 }
+
+// The variational system of a flow for Benettin's method: z = [x, Y, q] with
+// x' = f(x), Y' = J(x) Y (N x N, column-major) and q' = trace J(x), so one RK4
+// step advances the state, the deviation vectors and the trace integral with
+// the same weights (the trace mean checks the exponents' sum).
+template <class Flow>
+struct Variational {
+  static constexpr int N = Flow::kStates;
+  using Scalar = double;
+  static constexpr int kStates = N + N * N + 1;
+  static constexpr int kTrace = N + N * N;
+  using State = Eigen::Matrix<double, kStates, 1>;
+  const Flow& flow;
+
+  template <class S>
+  void derivative(const Eigen::Matrix<S, kStates, 1>& z, Eigen::Matrix<S, kStates, 1>& dz) const {
+    const Eigen::Matrix<double, N, 1> x = z.template head<N>();
+    Eigen::Matrix<double, N, 1> f;
+    Eigen::Matrix<double, N, N> J;
+    flow.derivative(x, f);
+    flow.jacobian(x, J);
+    const Eigen::Matrix<double, N, N> Y = Eigen::Map<const Eigen::Matrix<double, N, N>>(z.data() + N);
+    Eigen::Matrix<double, N, N> JY;
+    JY.noalias() = J * Y;
+    dz.template head<N>() = f;
+    Eigen::Map<Eigen::Matrix<double, N, N>> dY(dz.data() + N);
+    dY = JY;
+    dz(kTrace) = J.trace();
+  }
+};
 
 inline void finish_stats(SpectrumResult& r, const std::vector<std::vector<double>>& batch, int n) {
   const int B = static_cast<int>(batch.size());
@@ -144,7 +175,6 @@ SpectrumResult lyapunov_flow(const Flow& sys, const Eigen::Matrix<double, Flow::
   r.t_end = n_acc * h;
 
   V x = x0;
-  V k1, k2, k3, k4, xt;
   auto check = [&](long step) {
     if (!x.allFinite())
       throw std::runtime_error("lyapunov: state became non-finite at step " + std::to_string(step) +
@@ -152,21 +182,21 @@ SpectrumResult lyapunov_flow(const Flow& sys, const Eigen::Matrix<double, Flow::
   };
   // Transient: state only.
   for (long s = 0; s < n_trans; ++s) {
-    sys.derivative(x, k1);
-    xt = x + 0.5 * h * k1;
-    sys.derivative(xt, k2);
-    xt = x + 0.5 * h * k2;
-    sys.derivative(xt, k3);
-    xt = x + h * k3;
-    sys.derivative(xt, k4);
-    x += h / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4);
+    step_rk4(sys, x, h);
     if ((s & 1023) == 0) check(s);
   }
   check(n_trans);
-  M Y = M::Identity();
-  M J, K1, K2, K3, K4, Yt;
+  // RK4 (the core's, integrate/explicit_rk.hpp) on the variational system
+  // z = [x, Y, integral of trace J] (detail::Variational).
+  using Aug = detail::Variational<Flow>;
+  const Aug aug{sys};
+  typename Aug::State z;
+  z.template head<N>() = x;
+  Eigen::Map<M> Y(z.data() + N);
+  Y.setIdentity();
+  double& trace_int = z(Aug::kTrace);
+  trace_int = 0;
   V logs, acc = V::Zero(), batch_acc = V::Zero();
-  double trace_int = 0;
   std::vector<std::vector<double>> batch;
   V f0;
   sys.derivative(x, f0);
@@ -175,36 +205,18 @@ SpectrumResult lyapunov_flow(const Flow& sys, const Eigen::Matrix<double, Flow::
   long qr_count = 0;
   for (long s = 0; s < total; ++s) {
     const bool accumulating = s >= n_warm;
-    if (s == n_warm) sys.derivative(x, f0);
-    // RK4 on [x, Y]: Y' = J(x) Y.
-    sys.derivative(x, k1);
-    sys.jacobian(x, J);
-    double tr = J.trace();
-    K1.noalias() = J * Y;
-    xt = x + 0.5 * h * k1;
-    Yt = Y + 0.5 * h * K1;
-    sys.derivative(xt, k2);
-    sys.jacobian(xt, J);
-    tr += 2 * J.trace();
-    K2.noalias() = J * Yt;
-    xt = x + 0.5 * h * k2;
-    Yt = Y + 0.5 * h * K2;
-    sys.derivative(xt, k3);
-    sys.jacobian(xt, J);
-    tr += 2 * J.trace();
-    K3.noalias() = J * Yt;
-    xt = x + h * k3;
-    Yt = Y + h * K3;
-    sys.derivative(xt, k4);
-    sys.jacobian(xt, J);
-    tr += J.trace();
-    K4.noalias() = J * Yt;
-    x += h / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4);
-    Y += h / 6.0 * (K1 + 2 * K2 + 2 * K3 + K4);
-    if (accumulating) trace_int += h / 6.0 * tr;  // RK4 weights as quadrature
+    if (s == n_warm) {
+      x = z.template head<N>();
+      sys.derivative(x, f0);
+      trace_int = 0;  // the trace is integrated over the accumulation only
+    }
+    step_rk4(aug, z, h);
     if ((s + 1) % renorm_steps == 0) {
+      x = z.template head<N>();
       check(n_trans + s);
-      detail::qr_renorm<N>(Y, logs);
+      M Yq = Y;
+      detail::qr_renorm<N>(Yq, logs);
+      Y = Yq;
       if (accumulating) {
         acc += logs;
         batch_acc += logs;
@@ -242,6 +254,7 @@ SpectrumResult lyapunov_flow(const Flow& sys, const Eigen::Matrix<double, Flow::
   }
   r.exponents = sorted;
   r.trace_mean = trace_int / r.t_end;
+  x = z.template head<N>();
   V fT;
   sys.derivative(x, fT);
   r.final_speed = fT.norm();
