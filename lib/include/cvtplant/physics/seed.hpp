@@ -90,5 +90,15 @@ inline double chain_length_m(double r1_m, double r2_m, double C_m) {
   return r1_m * (kPi - 2.0 * s) + r2_m * (kPi + 2.0 * s) + 2.0 * dm::sqrt(C_m * C_m - (r2_m - r1_m) * (r2_m - r1_m));
 }
 
+// Driven pitch radius that keeps the chain length of radii (r1, r2) when the
+// driver radius becomes r1 + rho: Newton on the chain length, dL/dr2 = the
+// driven wrap angle (docs/rom.md#wedging).
+inline double driven_pitch_radius_m(double r1_m, double r2_m, double C_m, double rho_m) {
+  const double L0 = chain_length_m(r1_m, r2_m, C_m), a = r1_m + rho_m;
+  double b = r2_m;
+  for (int i = 0; i < 30; ++i) b -= (chain_length_m(a, b, C_m) - L0) / wrap_angle_driven_rad(a, b, C_m);
+  return b;
+}
+
 }  // namespace seed
 }  // namespace cvt
