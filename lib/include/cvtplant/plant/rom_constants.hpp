@@ -95,8 +95,9 @@ struct RomConstants {
       // docs/rom.md#wedging: r2(rho) from chain length conservation, as the
       // cubic through the exact solutions at rho = 0, +-e, +-2e (e = travel/2).
       const double e = 0.5 * p.radial_travel_m;
-      const double fp1 = seed::driven_pitch_radius_m(p.r1_m, p.r2_m, p.center_distance_m, e), fm1 = seed::driven_pitch_radius_m(p.r1_m, p.r2_m, p.center_distance_m, -e);
-      const double fp2 = seed::driven_pitch_radius_m(p.r1_m, p.r2_m, p.center_distance_m, 2 * e), fm2 = seed::driven_pitch_radius_m(p.r1_m, p.r2_m, p.center_distance_m, -2 * e);
+      auto r2_at = [&p](double rho) { return seed::driven_pitch_radius_m(p.r1_m, p.r2_m, p.center_distance_m, rho); };
+      const double fp1 = r2_at(e), fm1 = r2_at(-e);
+      const double fp2 = r2_at(2 * e), fm2 = r2_at(-2 * e);
       const double f0 = p.r2_m;
       const double a1_m = (8.0 * (fp1 - fm1) - (fp2 - fm2)) / (12.0 * e);
       const double a2_1_m = (16.0 * (fp1 + fm1) - (fp2 + fm2) - 30.0 * f0) / (24.0 * e * e);

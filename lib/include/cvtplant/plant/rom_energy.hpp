@@ -41,7 +41,7 @@ struct EnergyLedger {
 
 // A plant value in the accounting type.
 template <class T>
-RomAcc<T> rom_to_acc(const T& v) {
+inline RomAcc<T> rom_to_acc(const T& v) {
   if constexpr (std::is_floating_point_v<T>) return static_cast<RomAcc<T>>(v);
   else return v.to_float();
 }
@@ -50,7 +50,8 @@ RomAcc<T> rom_to_acc(const T& v) {
 // E = 1/2 J1 w1^2 + 1/2 J2 w2^2 + 1/2 m sum (v_c + xd_i)^2 + 1/2 k1 sum x_i^2
 //   + 1/2 k2 (x1 - x2)^2 (+ sheave, radial and end-stop terms).
 template <class Plant>
-RomAcc<typename Plant::Scalar> rom_stored_energy(const Plant& plant, const typename Plant::State& xs) {
+inline RomAcc<typename Plant::Scalar> rom_stored_energy(const Plant& plant,
+                                                      const typename Plant::State& xs) {
   using L = typename Plant::Layout;
   using U = typename Plant::U;
   using Acc = RomAcc<typename Plant::Scalar>;
@@ -93,13 +94,10 @@ RomAcc<typename Plant::Scalar> rom_stored_energy(const Plant& plant, const typen
 // The power terms common to every feature set, from the applied torques and
 // the tangential friction forces.
 template <class Plant>
-RomPower<RomAcc<typename Plant::Scalar>> rom_power_given(const Plant& plant, const typename Plant::State& xs,
-                                                         const typename Plant::Scalar& tau_in,
-                                                         const typename Plant::Scalar& tau_load,
-                                                         const typename Plant::Scalar& F1,
-                                                         const typename Plant::Scalar& F2,
-                                                         const typename Plant::Scalar& vr1,
-                                                         const typename Plant::Scalar& vr2) {
+inline RomPower<RomAcc<typename Plant::Scalar>> rom_power_given(
+    const Plant& plant, const typename Plant::State& xs, const typename Plant::Scalar& tau_in,
+    const typename Plant::Scalar& tau_load, const typename Plant::Scalar& F1, const typename Plant::Scalar& F2,
+    const typename Plant::Scalar& vr1, const typename Plant::Scalar& vr2) {
   using L = typename Plant::Layout;
   using Acc = RomAcc<typename Plant::Scalar>;
   const auto& a = plant.constants().acc;
@@ -121,8 +119,8 @@ RomPower<RomAcc<typename Plant::Scalar>> rom_power_given(const Plant& plant, con
 // The power terms with the friction already evaluated at xs (contact =
 // plant.contact(xs)); forces and torques as rom_outputs() computes them.
 template <class Plant>
-RomPower<RomAcc<typename Plant::Scalar>> rom_power(const Plant& plant, const typename Plant::State& xs,
-                                                   const typename Plant::Contact& contact) {
+inline RomPower<RomAcc<typename Plant::Scalar>> rom_power(const Plant& plant, const typename Plant::State& xs,
+                                                          const typename Plant::Contact& contact) {
   using T = typename Plant::Scalar;
   using L = typename Plant::Layout;
   const auto& c = plant.constants();
@@ -142,7 +140,8 @@ RomPower<RomAcc<typename Plant::Scalar>> rom_power(const Plant& plant, const typ
 
 // The power terms at xs with the plant's current inputs [W].
 template <class Plant>
-RomPower<RomAcc<typename Plant::Scalar>> rom_power(const Plant& plant, const typename Plant::State& xs) {
+inline RomPower<RomAcc<typename Plant::Scalar>> rom_power(const Plant& plant,
+                                                          const typename Plant::State& xs) {
   using T = typename Plant::Scalar;
   using L = typename Plant::Layout;
   using Acc = RomAcc<T>;

@@ -25,7 +25,8 @@ struct RomOutputs {
 
 // The outputs of `plant` (a CvtRom) at state x with its current inputs.
 template <class Plant>
-RomOutputs<typename Plant::Scalar> rom_outputs(const Plant& plant, const typename Plant::State& x) {
+inline RomOutputs<typename Plant::Scalar> rom_outputs(const Plant& plant,
+                                                     const typename Plant::State& x) {
   using T = typename Plant::Scalar;
   using L = typename Plant::Layout;
   const auto& c = plant.constants();

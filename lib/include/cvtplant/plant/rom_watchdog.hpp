@@ -32,7 +32,7 @@ inline constexpr const char* rom_fault_name(RomFault f) {
 
 // False for NaN and +-inf; fixed point has neither.
 template <class T>
-bool rom_finite(const T& v) {
+inline bool rom_finite(const T& v) {
   if constexpr (std::is_floating_point_v<T>) {
     return v == v && v - v == v - v;  // NaN fails the first, +-inf the second
   } else {
@@ -44,7 +44,7 @@ bool rom_finite(const T& v) {
 // The first fault a state shows: a non-finite component (floating point) or
 // one at the rail of the fixed-point range (saturated), else none.
 template <class State>
-RomFault rom_state_fault(const State& x) {
+inline RomFault rom_state_fault(const State& x) {
   using T = typename State::Scalar;
   for (int i = 0; i < x.size(); ++i) {
     if constexpr (std::is_floating_point_v<T>) {
