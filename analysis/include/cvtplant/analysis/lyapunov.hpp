@@ -83,18 +83,22 @@ void qr_renorm(Eigen::Matrix<double, N, N>& Y, Eigen::Matrix<double, N, 1>& logs
 // The variational system of a flow for Benettin's method: z = [x, Y, q] with
 // x' = f(x), Y' = J(x) Y (N x N, column-major) and q' = trace J(x), so one RK4
 // step advances the state, the deviation vectors and the trace integral with
-// the same weights (the trace mean checks the exponents' sum).
+// the same weights (the trace mean checks the exponents' sum). z is a dynamic
+// vector: its N + N^2 + 1 entries only meet elementwise in the RK4 stages,
+// and fixed sizes of up to 157 entries would cost minutes of compile time
+// per plant size; x, J and Y stay fixed-size.
 template <class Flow>
 struct Variational {
   static constexpr int N = Flow::kStates;
   using Scalar = double;
-  static constexpr int kStates = N + N * N + 1;
+  static constexpr int kStates = Eigen::Dynamic;
+  static constexpr int kSize = N + N * N + 1;
   static constexpr int kTrace = N + N * N;
-  using State = Eigen::Matrix<double, kStates, 1>;
+  using State = Eigen::VectorXd;
   const Flow& flow;
 
-  template <class S>
-  void derivative(const Eigen::Matrix<S, kStates, 1>& z, Eigen::Matrix<S, kStates, 1>& dz) const {
+  void derivative(const State& z, State& dz) const {
+    dz.resize(kSize);
     const Eigen::Matrix<double, N, 1> x = z.template head<N>();
     Eigen::Matrix<double, N, 1> f;
     Eigen::Matrix<double, N, N> J;
@@ -190,7 +194,7 @@ SpectrumResult lyapunov_flow(const Flow& sys, const Eigen::Matrix<double, Flow::
   // z = [x, Y, integral of trace J] (detail::Variational).
   using Aug = detail::Variational<Flow>;
   const Aug aug{sys};
-  typename Aug::State z;
+  typename Aug::State z = Aug::State::Zero(Aug::kSize);
   z.template head<N>() = x;
   Eigen::Map<M> Y(z.data() + N);
   Y.setIdentity();
