@@ -8,9 +8,9 @@
 #include <cstring>
 
 #include "cvtctl/controller_node.hpp"
-#include "posix_clock.hpp"
+#include "cvtplant/port/posix_clock.hpp"
 #include "stop_flag.hpp"
-#include "socketcan_transport.hpp"
+#include "cvtplant/port/socketcan_transport.hpp"
 
 namespace {
 
