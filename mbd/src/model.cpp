@@ -6,11 +6,12 @@
 #include <limits>
 #include <stdexcept>
 
+#include "cvtplant/physics/seed.hpp"
+
 namespace cvt::mbd {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 void require(bool ok, const char* what) {
@@ -76,17 +77,18 @@ ChainModel::ChainModel(const MbdParams& p) : p_(p), geo_(p.r1_m, p.r2_m, p.cente
   settle_chain_.friction.mu0 = 0.0;
   // docs/mbd.md#sheave-deformation: Eq. 4 with r, r' the driver and driven
   // pitch radii for both pulleys; zeta from each wrap's entry point.
-  const double amp = p.sheave_deformation ? deformation_amplitude_rad(p.r1_m, p.r2_m) : 0.0;
-  const double centre = deformation_centre_rad(p.r1_m, p.r2_m);
+  const double ratio = p.r1_m / p.r2_m;
+  const double amp = p.sheave_deformation ? seed::deformation_amplitude_rad(ratio) : 0.0;
+  const double centre = seed::deformation_centre_rad(ratio);
   for (int j = 0; j < 2; ++j) {
     detail::PulleyConst& pc = pulley_[j];
     pc.ox_m = geo_.centre[j].x;
     pc.oy_m = geo_.centre[j].y;
-    pc.width_at_axis_m = 2.0 * geo_.r_m[j] * std::tan(p.beta0_rad);
+    pc.width_at_axis_m = 2.0 * geo_.r_m[j] * sin(p.beta0_rad) / cos(p.beta0_rad);
     pc.beta0_rad = p.beta0_rad;
     pc.half_amp_rad = 0.5 * amp;
-    pc.wx = std::cos(geo_.entry_angle_rad[j] + centre);
-    pc.wy = std::sin(geo_.entry_angle_rad[j] + centre);
+    pc.wx = cos(geo_.entry_angle_rad[j] + centre);
+    pc.wy = sin(geo_.entry_angle_rad[j] + centre);
     // Fixed groove: a bolt is compressed only inside r tan(beta0)/tan(beta_min)
     // (0.11 % above r); a movable sheave can close the groove, so allow more.
     pc.reject_radius_m = clamped() ? geo_.r_m[j] + 0.05 : geo_.r_m[j] * 1.01;
@@ -177,8 +179,8 @@ double ChainModel::applied_torque(int j, double chain_moment) const {
 // docs/mbd.md#equations-of-motion
 void ChainModel::link_trig(const double* y) const {
   for (int i = 0; i < n_links_; ++i) {
-    cos_[static_cast<std::size_t>(i)] = std::cos(y[6 * i + 2]);
-    sin_[static_cast<std::size_t>(i)] = std::sin(y[6 * i + 2]);
+    cos_[static_cast<std::size_t>(i)] = cos(y[6 * i + 2]);
+    sin_[static_cast<std::size_t>(i)] = sin(y[6 * i + 2]);
   }
 }
 
@@ -367,8 +369,8 @@ void ChainModel::jacobian(double t_s, const double* y, double* values) const {
       a_d[k] = D12::variable(y[6 * i + k], k);
       b_d[k] = D12::variable(y[6 * b + k], 6 + k);
     }
-    const D12 ca = detail::el_cos(a_d[2]), sa = detail::el_sin(a_d[2]);
-    const D12 cb = detail::el_cos(b_d[2]), sb = detail::el_sin(b_d[2]);
+    const D12 ca = cos(a_d[2]), sa = sin(a_d[2]);
+    const D12 cb = cos(b_d[2]), sb = sin(b_d[2]);
     const auto jf = detail::joint_forces<D12>(chain(), a_d, ca, sa, b_d, cb, sb);
     for (int v = 0; v < 12; ++v) {
       const int col = v < 6 ? 6 * i + v : 6 * b + (v - 6);
@@ -394,7 +396,7 @@ void ChainModel::jacobian(double t_s, const double* y, double* values) const {
     for (int i = 0; i < n_links_; ++i) {
       D8 q[6];
       for (int k = 0; k < 6; ++k) q[k] = D8::variable(y[6 * i + k], k);
-      const D8 cq = detail::el_cos(q[2]), sq = detail::el_sin(q[2]);
+      const D8 cq = cos(q[2]), sq = sin(q[2]);
       const auto cf = detail::contact_forces<D8>(chain(), pulley_[j], q, cq, sq, w, s);
       if (!cf.active) continue;
       moment[j] += cf.pulley_moment_Nm.v;
@@ -512,7 +514,7 @@ std::vector<LinkState> ChainModel::link_states(const double* y) const {
     l.x_m = q[0];
     l.y_m = q[1];
     l.theta_rad = q[2];
-    const double c = std::cos(q[2]), s = std::sin(q[2]);
+    const double c = cos_[static_cast<std::size_t>(i)], s = sin_[static_cast<std::size_t>(i)];
     l.front_x_m = q[0] + h * c;
     l.front_y_m = q[1] + h * s;
     l.rear_x_m = q[0] - h * c;

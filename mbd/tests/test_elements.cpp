@@ -9,6 +9,7 @@
 #include "cvtplant/friction/friction_law.hpp"
 #include "cvtplant/mbd/elements.hpp"
 #include "cvtplant/mbd/geometry.hpp"
+#include "cvtplant/physics/seed.hpp"
 #include "run_helpers.hpp"
 
 using namespace cvt::mbd;
@@ -42,8 +43,8 @@ detail::PulleyConst driver() {
   pc.oy_m = 0;
   pc.width_at_axis_m = 2.0 * kR1 * std::tan(kBeta0);
   pc.beta0_rad = kBeta0;
-  pc.half_amp_rad = 0.5 * deformation_amplitude_rad(kR1, kR2);
-  const double c = g.entry_angle_rad[0] + deformation_centre_rad(kR1, kR2);
+  pc.half_amp_rad = 0.5 * cvt::seed::deformation_amplitude_rad(kR1 / kR2);
+  const double c = g.entry_angle_rad[0] + cvt::seed::deformation_centre_rad(kR1 / kR2);
   pc.wx = std::cos(c);
   pc.wy = std::sin(c);
   pc.reject_radius_m = 1.01 * kR1;
@@ -193,8 +194,9 @@ TEST_CASE("contact with friction: Eq. 7 normal force, and the power balance of l
   CHECK(gt == doctest::Approx(f.slip_t_m_s).epsilon(1e-12));
   // Eq. 3: local flank angle at this wrap angle.
   const DriveGeometry geo(kR1, kR2, kC);
-  const double beta = flank_angle_rad(kBeta0, deformation_amplitude_rad(kR1, kR2),
-                                      std::atan2(by, bx) - geo.entry_angle_rad[0], deformation_centre_rad(kR1, kR2));
+  const double beta =
+      cvt::seed::flank_angle_rad(kBeta0, cvt::seed::deformation_amplitude_rad(kR1 / kR2),
+                                 cvt::seed::deformation_centre_rad(kR1 / kR2), std::atan2(by, bx) - geo.entry_angle_rad[0]);
   // Eq. 6 and the seed's smoothing, from the core's law directly.
   const double mu = cvt::friction_coefficient(c.friction, g), sgn = cvt::friction_sign(c.friction, g);
   const double N = f.normal_N;

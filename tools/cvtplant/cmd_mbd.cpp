@@ -21,12 +21,6 @@ namespace {
 using cvt::mbd::Method;
 using cvt::mbd::SheaveMode;
 
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
-
 void require_range(double v, double lo, double hi, const std::string& what, const std::string& unit) {
   if (!(v >= lo && v <= hi))
     throw UsageError{what + ": " + num(v) + " is outside [" + num(lo) + ", " + num(hi) + "]" +
@@ -145,6 +139,12 @@ cvt::mbd::RunOptions run_options_for(const ModelOptions& o) {
   r.max_steps = o.max_steps;
   r.ledger_tol = o.ledger_tol;
   return r;
+}
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
 }
 
 std::string method_label(const ModelOptions& o) {

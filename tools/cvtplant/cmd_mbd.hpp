@@ -44,6 +44,7 @@ void validate(const ModelOptions& o);
 cvt::mbd::MbdParams params_for(const ModelOptions& o, int friction_case);
 cvt::mbd::RunOptions run_options_for(const ModelOptions& o);
 
+std::string num(double v);                        // %g, for messages and figure titles
 std::string method_label(const ModelOptions& o);  // "BDF rtol 1e-06" / "RK4 dt 1e-06 s"
 std::string case_label(int friction_case);        // "case 1 (Coulomb)" ...
 

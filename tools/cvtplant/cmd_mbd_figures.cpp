@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -12,6 +11,7 @@
 #include "cmd_mbd.hpp"
 #include "commands.hpp"
 #include "io_util.hpp"
+#include "cvtplant/analysis/errors.hpp"
 #include "cvtplant/analysis/figures.hpp"
 #include "cvtplant/mbd/geometry.hpp"
 
@@ -19,28 +19,9 @@ namespace cvtcli::mbdcli {
 
 namespace {
 
-const char* kTerminal = "set terminal pngcairo size 1000,700 font 'DejaVu Sans,11' noenhanced\n";
-
-std::string fmt(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
-
-std::ofstream open_text(const std::string& path) {
-  std::ofstream f(path);
-  if (!f) throw RunError{"cannot write '" + path + "'"};
-  f.precision(9);
-  return f;
-}
-
-void draw(const std::string& script) {
-  try {
-    cvt::analysis::run_gnuplot(script);
-  } catch (const std::exception& e) {
-    throw RunError{e.what()};
-  }
-}
+using cvt::analysis::open_text_file;
+using cvt::analysis::png_terminal;
+using cvt::analysis::run_gnuplot;
 
 // Columns of the per-sample CSV used by the figures (write_csv_header order).
 constexpr int kColT = 1, kColOmega1 = 2, kColOmega2 = 3, kColFax1 = 5;
@@ -48,10 +29,10 @@ constexpr int kColT = 1, kColOmega1 = 2, kColOmega2 = 3, kColFax1 = 5;
 // Seed Fig. 13: pulley speeds, one panel per case (both panels in rad/s).
 std::string fig13(const std::string& d, const ModelOptions& m) {
   const std::string png = d + "/fig13_pulley_speeds.png";
-  auto s = open_text(d + "/fig13.gp");
-  s << kTerminal << "set output '" << png << "'\nset datafile separator ','\nset grid\n"
-    << "set multiplot layout 2,1 title 'Pulley speeds, tau_in = " << fmt(m.tau_in_Nm) << " N m, tau_load = "
-    << fmt(m.tau_load_Nm) << " N m (seed Fig. 13), multibody model, " << method_label(m) << "'\n"
+  auto s = open_text_file(d + "/fig13.gp");
+  s << png_terminal(1000, 700) << "set output '" << png << "'\nset datafile separator ','\nset grid\n"
+    << "set multiplot layout 2,1 title 'Pulley speeds, tau_in = " << num(m.tau_in_Nm) << " N m, tau_load = "
+    << num(m.tau_load_Nm) << " N m (seed Fig. 13), multibody model, " << method_label(m) << "'\n"
     << "set xlabel 't [s]'\nset ylabel 'pulley speed [rad/s]'\nset key top left\n";
   for (int c = 1; c <= 2; ++c) {
     s << "set title '(" << (c == 1 ? 'a' : 'b') << ") seed " << case_label(c) << "'\n"
@@ -61,15 +42,15 @@ std::string fig13(const std::string& d, const ModelOptions& m) {
   }
   s << "unset multiplot\n";
   s.close();
-  draw(d + "/fig13.gp");
+  run_gnuplot(d + "/fig13.gp");
   return png;
 }
 
 // Seed Fig. 14: driver axial force, one panel per case (both in kN).
 std::string fig14(const std::string& d, const ModelOptions& m) {
   const std::string png = d + "/fig14_driver_axial_force.png";
-  auto s = open_text(d + "/fig14.gp");
-  s << kTerminal << "set output '" << png << "'\nset datafile separator ','\nset grid\n"
+  auto s = open_text_file(d + "/fig14.gp");
+  s << png_terminal(1000, 700) << "set output '" << png << "'\nset datafile separator ','\nset grid\n"
     << "set multiplot layout 2,1 title 'Driver pulley axial force (seed Fig. 14), " << m.sheaves
     << " sheaves, multibody model, " << method_label(m) << "'\n"
     << "set xlabel 't [s]'\nset ylabel 'axial force F_ax1 [kN]'\nset key top right\n";
@@ -80,7 +61,7 @@ std::string fig14(const std::string& d, const ModelOptions& m) {
   }
   s << "unset multiplot\n";
   s.close();
-  draw(d + "/fig14.gp");
+  run_gnuplot(d + "/fig14.gp");
   return png;
 }
 
@@ -90,7 +71,7 @@ std::string chain_picture(const std::string& d, const ModelOptions& m, int c, co
   const std::string tag = "chain_case" + std::to_string(c);
   const std::string png = d + "/" + tag + ".png";
   {
-    auto f = open_text(d + "/" + tag + ".dat");
+    auto f = open_text_file(d + "/" + tag + ".dat");
     // Three data sets (index 0 free, 1 driver wrap, 2 driven wrap), each link a
     // two-point segment.
     for (int state = -1; state <= 1; ++state) {
@@ -131,9 +112,9 @@ std::string chain_picture(const std::string& d, const ModelOptions& m, int c, co
   x_hi += 0.02;
   y_lo -= 0.02;
   y_hi += 0.02;
-  auto s = open_text(d + "/" + tag + ".gp");
-  s << "set terminal pngcairo size 1300,560 font 'DejaVu Sans,11' noenhanced\nset output '" << png << "'\n"
-    << "set title \"Chain on the pulleys at t = " << fmt(r.picture_t_s) << " s, seed " << case_label(c) << ", "
+  auto s = open_text_file(d + "/" + tag + ".gp");
+  s << png_terminal(1300, 560) << "set output '" << png << "'\n"
+    << "set title \"Chain on the pulleys at t = " << num(r.picture_t_s) << " s, seed " << case_label(c) << ", "
     << m.links << " links, " << m.sheaves << " sheaves, " << method_label(m)
     << "\\nlinks drawn from rear to front pin (dot: the bolt at the front pin), thin lines: the joints\"\n"
     << "set size ratio -1\nset grid\nset xlabel 'x [m]'\nset ylabel 'y [m]'\nset key outside right\n"
@@ -152,14 +133,14 @@ std::string chain_picture(const std::string& d, const ModelOptions& m, int c, co
     << "'+' using (0):(0) every ::0::0 with points pt 1 ps 2 lc rgb 'black' title 'pulley centres', "
     << "'+' using (" << g.center_distance_m << "):(0) every ::0::0 with points pt 1 ps 2 lc rgb 'black' notitle\n";
   s.close();
-  draw(d + "/" + tag + ".gp");
+  run_gnuplot(d + "/" + tag + ".gp");
   return png;
 }
 
 }  // namespace
 
 void add_figure_options(CLI::App* sub, FigureOptions& o) {
-  sub->add_option("--out-dir", o.out_dir, "Directory for the PNGs and their data (created if missing)")->required();
+  sub->add_option("--out-dir", o.out_dir, "Directory for the PNGs and their data (created if missing; its parent must exist)")->required();
   sub->add_option("--picture-t", o.picture_t_s, "Time of the chain picture [s] (default: the end of the run)");
   sub->add_flag("--json", o.json, "Print the files written and both runs' summaries as JSON");
   add_model_options(sub, o.model);
@@ -168,11 +149,12 @@ void add_figure_options(CLI::App* sub, FigureOptions& o) {
 int run_figures(const FigureOptions& o) {
   validate(o.model);
   if (o.picture_t_s != -1 && !(o.picture_t_s >= 0 && o.picture_t_s <= o.model.t_end_s))
-    throw UsageError{"--picture-t: " + fmt(o.picture_t_s) + " is outside [0, --t-end]"};
-  std::error_code ec;
-  std::filesystem::create_directories(o.out_dir, ec);
-  if (ec || !std::filesystem::is_directory(o.out_dir))
-    throw UsageError{"--out-dir: cannot create directory '" + o.out_dir + "'"};
+    throw UsageError{"--picture-t: " + num(o.picture_t_s) + " is outside [0, --t-end]"};
+  try {
+    cvt::analysis::ensure_dir(o.out_dir);
+  } catch (const cvt::analysis::InputError& e) {
+    throw UsageError{std::string("--out-dir: ") + e.what()};
+  }
   const double pic_t = o.picture_t_s >= 0 ? o.picture_t_s : o.model.t_end_s;
   std::vector<std::string> pngs;
   nlohmann::json runs = nlohmann::json::array();
@@ -193,9 +175,15 @@ int run_figures(const FigureOptions& o) {
                     {"energy_residual_rel", r.stats.ledger_residual_max_rel},
                     {"csv", o.out_dir + "/case" + std::to_string(c) + ".csv"}});
   }
-  pngs.push_back(fig13(o.out_dir, o.model));
-  pngs.push_back(fig14(o.out_dir, o.model));
-  for (int c = 1; c <= 2; ++c) pngs.push_back(chain_picture(o.out_dir, o.model, c, outcome[c - 1]));
+  // The runs are done: a data file or gnuplot failing now is an output that
+  // could not be made (exit 1).
+  try {
+    pngs.push_back(fig13(o.out_dir, o.model));
+    pngs.push_back(fig14(o.out_dir, o.model));
+    for (int c = 1; c <= 2; ++c) pngs.push_back(chain_picture(o.out_dir, o.model, c, outcome[c - 1]));
+  } catch (const std::runtime_error& e) {
+    throw RunError{e.what()};
+  }
   if (o.json) {
     print_json({{"subcommand", "mbd figures"}, {"png", pngs}, {"runs", runs}, {"picture_t_s", outcome[0].picture_t_s}});
   } else {

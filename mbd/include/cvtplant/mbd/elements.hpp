@@ -8,43 +8,33 @@
 //            (Eq. 7), friction (Eq. 6) along the slip direction
 //                                             (docs/mbd.md#contact)
 // Link state order: x, y, theta, vx, vy, omega (centre of mass, SI units).
-#include <cmath>
-
+//
+// Elementary functions are the core's, called unqualified
+// (docs/architecture.md#scalar-math): cvt::dm's deterministic math for
+// double, the chain rule next to the dual type for Dual<double, N>.
 #include "cvtplant/autodiff/dual.hpp"
 #include "cvtplant/friction/friction_law.hpp"
+#include "cvtplant/math/detmath.hpp"
 
 namespace cvt::mbd::detail {
 
-// Elementary functions for both scalar kinds. Dual numbers get the chain
-// rule here, from the double functions, so the element code is one text.
+// The value of either scalar kind, for branches (contact or not).
 inline double value(double x) { return x; }
 template <int N>
 double value(const Dual<double, N>& x) {
   return x.v;
 }
 
+// |(x, y)| for a vector that may vanish: a slip velocity is exactly zero
+// while a pulley is held and the chain rests, where sqrt's slope 1/(2 sqrt)
+// would make the derivative 0 x inf. There the slope is taken as 0 (the
+// norm's subgradient at its kink).
+inline double norm(double x, double y) { return sqrt(x * x + y * y); }
 template <int N>
-Dual<double, N> with_slope(const Dual<double, N>& a, double v, double slope) {
-  Dual<double, N> r(v);
-  for (int i = 0; i < N; ++i) r.d[i] = slope * a.d[i];
-  return r;
-}
-
-inline double el_sin(double x) { return std::sin(x); }
-inline double el_cos(double x) { return std::cos(x); }
-inline double el_sqrt(double x) { return std::sqrt(x); }
-template <int N>
-Dual<double, N> el_sin(const Dual<double, N>& a) {
-  return with_slope(a, std::sin(a.v), std::cos(a.v));
-}
-template <int N>
-Dual<double, N> el_cos(const Dual<double, N>& a) {
-  return with_slope(a, std::cos(a.v), -std::sin(a.v));
-}
-template <int N>
-Dual<double, N> el_sqrt(const Dual<double, N>& a) {
-  const double s = std::sqrt(a.v);
-  return with_slope(a, s, s > 0 ? 0.5 / s : 0.0);
+Dual<double, N> norm(const Dual<double, N>& x, const Dual<double, N>& y) {
+  const Dual<double, N> sq = x * x + y * y;
+  if (sq.v > 0) return sqrt(sq);
+  return Dual<double, N>(0.0);
 }
 
 // Friction per unit slip speed, k(s) = mu(s) sgn(s) / s for s = |g| >= 0, with
@@ -65,7 +55,9 @@ Dual<double, N> friction_per_speed(const FrictionParams<double>& fp, const Dual<
   const FrictionEval<double> e = friction_characteristic_and_slope(fp, se);
   const double k = friction_per_speed(fp, s.v);
   const double dk = (e.slope * se - e.phi) / (se * se);
-  return with_slope(s, k, dk);
+  Dual<double, N> r(k);
+  for (int i = 0; i < N; ++i) r.d[i] = dk * s.d[i];
+  return r;
 }
 
 // Link constants shared by the elements.
@@ -118,7 +110,7 @@ JointForces<S> joint_forces(const ChainConst& c, const S* a, const S& ca, const 
   f.fa[2] = -(c.k_N_m * (dx * gax + dy * gay)) - c.p_Ns_m * (rx * (gax + hx) + ry * (gay + hy));
   f.fb[2] = -(c.k_N_m * (dx * gbx + dy * gby)) - c.p_Ns_m * (rx * (gbx + hx) + ry * (gby + hy));
   const S len2 = dx * dx + dy * dy;
-  f.stretch_m = el_sqrt(len2);
+  f.stretch_m = norm(dx, dy);
   f.tension_N = value(f.stretch_m) > 0 ? (Fx * dx + Fy * dy) / f.stretch_m : S(0.0);
   f.potential_J = 0.5 * c.k_N_m * len2;
   f.dissipation_W = c.p_Ns_m * (rx * rx + ry * ry);
@@ -159,13 +151,13 @@ ContactForces<S> contact_forces(const ChainConst& c, const PulleyConst& pc, cons
   const S ry = q[1] + h * sq - pc.oy_m;
   const double rxv = value(rx), ryv = value(ry);
   if (rxv * rxv + ryv * ryv >= pc.reject_radius_m * pc.reject_radius_m) return out;
-  const S rho = el_sqrt(rx * rx + ry * ry);
+  const S rho = norm(rx, ry);
   const S ex = rx / rho, ey = ry / rho;  // radial unit vector
   const S tx = -ey, ty = ex;             // tangential (running direction)
   // Eq. 3: beta = beta0 + Delta/2 cos(zeta - theta_c), zeta measured from the
   // wrap entry; cos(zeta - theta_c) = e_rho . w.
   const S beta = pc.beta0_rad + pc.half_amp_rad * (ex * pc.wx + ey * pc.wy);
-  const S cb = el_cos(beta), sb = el_sin(beta);
+  const S cb = cos(beta), sb = sin(beta);
   const S tanb = sb / cb;
   // Eq. 5 with the local groove width z + u = l_b + 2 rho tan(beta) - 2 r_p tan(beta0) + s:
   // compression l_b - z - u = 2 r_p tan(beta0) - 2 rho tan(beta) - s.
@@ -185,7 +177,7 @@ ContactForces<S> contact_forces(const ChainConst& c, const PulleyConst& pc, cons
   const S gy = vy - omega * rx;
   const S gr = gx * ex + gy * ey;
   const S gt = gx * tx + gy * ty;
-  const S gs = el_sqrt(gr * gr + gt * gt);
+  const S gs = norm(gr, gt);
   const S kf = friction_per_speed(c.friction, gs);
   // Eq. 7: N = F_r tan(beta) + F_b / cos(beta), F_r = -mu N sgn sin(gamma) = -k N g_r.
   const S N = Fb / (cb * (1.0 + kf * gr * tanb));

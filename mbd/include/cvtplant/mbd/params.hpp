@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cvtplant/friction/friction_law.hpp"
+#include "cvtplant/physics/seed.hpp"
 
 namespace cvt::mbd {
 
@@ -35,18 +36,18 @@ struct SpeedHold {
 
 struct MbdParams {
   // --- seed Table 1 and section 4 (docs/mbd.md#parameters)
-  double beta0_rad = 0.26179938779914943;  // non-deformed half sheave angle, 15 deg
-  double center_distance_m = 0.5;
-  double link_mass_kg = 0.1125;
-  double J1_kgm2 = 1.4516;  // driver pulley
-  double J2_kgm2 = 3.2661;  // driven pulley
-  double link_length_m = 0.03;      // L: distance between a link's two pins
-  double bolt_stiffness_N_m = 200e3;  // K_b (Eq. 5)
-  double bolt_length_m = 0.02;        // l_b (Eq. 5)
-  double joint_stiffness_N_m = 90e3;  // k, force element between links
-  double joint_damping_Ns_m = 2.7e3;  // p, force element between links
-  double r1_m = 0.0762;  // driver pitch radius (bolt unloaded touches both flanks here)
-  double r2_m = 0.1143;  // driven pitch radius
+  double beta0_rad = seed::kHalfSheaveAngle_rad;  // non-deformed half sheave angle
+  double center_distance_m = seed::kCenterDistance_m;
+  double link_mass_kg = seed::kLinkMass_kg;
+  double J1_kgm2 = seed::kDriverInertia_kgm2;
+  double J2_kgm2 = seed::kDrivenInertia_kgm2;
+  double link_length_m = seed::kLinkLength_m;             // L: distance between a link's two pins
+  double bolt_stiffness_N_m = seed::kBlockStiffness_N_m;  // K_b (Eq. 5)
+  double bolt_length_m = seed::kBlockLength_m;            // l_b (Eq. 5)
+  double joint_stiffness_N_m = seed::kChainStiffness_N_m;  // k, force element between links
+  double joint_damping_Ns_m = seed::kChainDamping_Ns_m;    // p, force element between links
+  double r1_m = seed::kDriverPitchRadius_m;  // driver pitch radius (bolt unloaded touches both flanks here)
+  double r2_m = seed::kDrivenPitchRadius_m;  // driven pitch radius
   // --- choices the seed leaves open (docs/mbd.md#open-choices)
   int links = 44;                  // N: fills the pitch line with about 520 N of pretension
   double link_inertia_kgm2 = -1;   // <= 0: slender bar, m L^2 / 12
@@ -54,8 +55,8 @@ struct MbdParams {
   // --- friction (seed Eq. 6, Table 2), the core's laws and sign smoothing
   FrictionParams<double> friction = friction_presets::table2_case1<double>();
   // --- loads (seed section 4): constant torques from the release on
-  double tau_in_Nm = 100.0;
-  double tau_load_Nm = 50.0;
+  double tau_in_Nm = seed::kInputTorque_Nm;
+  double tau_load_Nm = seed::kLoadTorque_Nm;
   SpeedHold hold1, hold2;
   // --- sheaves
   SheaveMode sheaves = SheaveMode::fixed;
