@@ -192,6 +192,56 @@ class Reader {
     f.lambda_s_m = number(t, pre, "lambda_s_m", f.lambda_s_m);
   }
 
+  // The [params] table: every RomParams field (beta0 in degrees).
+  void params(const toml::table& t, cvt::RomParams& p) {
+    const std::string pre = "params.";
+    check_known(t, pre,
+                {"r1_m", "r2_m", "beta0_deg", "center_distance_m", "J1_kgm2", "J2_kgm2", "lump_mass_kg", "k1_N_m",
+                 "c1_Ns_m", "k2_N_m", "c2_Ns_m", "hold_driver_speed", "hold_driven_speed", "stick_speed_m_s",
+                 "actuator_tau_s", "clamp_max_N", "sheave_mass_kg", "sheave_damping_Ns_m", "K_ax_N_m", "road_T0_Nm",
+                 "road_cv_Nms_rad", "road_ca_Nms2_rad2", "road_w_eps_rad_s", "zeta1_rad", "zeta2_rad", "pitch_m",
+                 "driven_clamp_N", "radial_mass_kg", "radial_damping_Ns_m", "radial_travel_m", "radial_stop_N_m"});
+    p.r1_m = number(t, pre, "r1_m", p.r1_m);
+    p.r2_m = number(t, pre, "r2_m", p.r2_m);
+    p.beta0_rad = number(t, pre, "beta0_deg", p.beta0_rad / kDegToRad) * kDegToRad;
+    p.center_distance_m = number(t, pre, "center_distance_m", p.center_distance_m);
+    p.J1_kgm2 = number(t, pre, "J1_kgm2", p.J1_kgm2);
+    p.J2_kgm2 = number(t, pre, "J2_kgm2", p.J2_kgm2);
+    p.lump_mass_kg = number(t, pre, "lump_mass_kg", p.lump_mass_kg);
+    p.k1_N_m = number(t, pre, "k1_N_m", p.k1_N_m);
+    p.c1_Ns_m = number(t, pre, "c1_Ns_m", p.c1_Ns_m);
+    p.k2_N_m = number(t, pre, "k2_N_m", p.k2_N_m);
+    p.c2_Ns_m = number(t, pre, "c2_Ns_m", p.c2_Ns_m);
+    p.hold_driver_speed = boolean(t, pre, "hold_driver_speed", p.hold_driver_speed);
+    p.hold_driven_speed = boolean(t, pre, "hold_driven_speed", p.hold_driven_speed);
+    p.stick_speed_m_s = number(t, pre, "stick_speed_m_s", p.stick_speed_m_s);
+    p.actuator_tau_s = number(t, pre, "actuator_tau_s", p.actuator_tau_s);
+    p.clamp_max_N = number(t, pre, "clamp_max_N", p.clamp_max_N);
+    p.sheave_mass_kg = number(t, pre, "sheave_mass_kg", p.sheave_mass_kg);
+    p.sheave_damping_Ns_m = number(t, pre, "sheave_damping_Ns_m", p.sheave_damping_Ns_m);
+    p.K_ax_N_m = number(t, pre, "K_ax_N_m", p.K_ax_N_m);
+    p.road_T0_Nm = number(t, pre, "road_T0_Nm", p.road_T0_Nm);
+    p.road_cv_Nms_rad = number(t, pre, "road_cv_Nms_rad", p.road_cv_Nms_rad);
+    p.road_ca_Nms2_rad2 = number(t, pre, "road_ca_Nms2_rad2", p.road_ca_Nms2_rad2);
+    p.road_w_eps_rad_s = number(t, pre, "road_w_eps_rad_s", p.road_w_eps_rad_s);
+    p.zeta1_rad = number(t, pre, "zeta1_rad", p.zeta1_rad);
+    p.zeta2_rad = number(t, pre, "zeta2_rad", p.zeta2_rad);
+    p.pitch_m = number(t, pre, "pitch_m", p.pitch_m);
+    p.driven_clamp_N = number(t, pre, "driven_clamp_N", p.driven_clamp_N);
+    p.radial_mass_kg = number(t, pre, "radial_mass_kg", p.radial_mass_kg);
+    p.radial_damping_Ns_m = number(t, pre, "radial_damping_Ns_m", p.radial_damping_Ns_m);
+    p.radial_travel_m = number(t, pre, "radial_travel_m", p.radial_travel_m);
+    p.radial_stop_N_m = number(t, pre, "radial_stop_N_m", p.radial_stop_N_m);
+  }
+
+  // A parameter file (`cvtplant calibrate --out`): [params] only, applied to s.
+  void read_params_only(cvt::Scene& s) {
+    check_known(root_, "", {"params"});
+    if (const toml::table* t = table(root_, "", "params")) params(*t, s.params);
+    const cvt::SceneIssue issue = cvt::validate_scene(s);
+    if (!issue.ok) fail_field(field_key(issue.field), issue.message);
+  }
+
   void read(LoadedScene& out) {
     cvt::Scene& s = out.scene;
     check_known(root_, "", {"name", "summary", "base", "features", "t_end_s", "frame_s", "substeps", "integrator",
@@ -222,46 +272,7 @@ class Reader {
     else fail_field("scalar", "unknown scalar '" + scalar + "' (double, float, fixed)");
 
     cvt::RomParams& p = s.params;
-    if (const toml::table* t = table(root_, "", "params")) {
-      const std::string pre = "params.";
-      check_known(*t, pre,
-                  {"r1_m", "r2_m", "beta0_deg", "center_distance_m", "J1_kgm2", "J2_kgm2", "lump_mass_kg", "k1_N_m",
-                   "c1_Ns_m", "k2_N_m", "c2_Ns_m", "hold_driver_speed", "hold_driven_speed", "stick_speed_m_s",
-                   "actuator_tau_s", "clamp_max_N", "sheave_mass_kg", "sheave_damping_Ns_m", "K_ax_N_m", "road_T0_Nm",
-                   "road_cv_Nms_rad", "road_ca_Nms2_rad2", "road_w_eps_rad_s", "zeta1_rad", "zeta2_rad", "pitch_m",
-                   "driven_clamp_N", "radial_mass_kg", "radial_damping_Ns_m", "radial_travel_m", "radial_stop_N_m"});
-      p.r1_m = number(*t, pre, "r1_m", p.r1_m);
-      p.r2_m = number(*t, pre, "r2_m", p.r2_m);
-      p.beta0_rad = number(*t, pre, "beta0_deg", p.beta0_rad / kDegToRad) * kDegToRad;
-      p.center_distance_m = number(*t, pre, "center_distance_m", p.center_distance_m);
-      p.J1_kgm2 = number(*t, pre, "J1_kgm2", p.J1_kgm2);
-      p.J2_kgm2 = number(*t, pre, "J2_kgm2", p.J2_kgm2);
-      p.lump_mass_kg = number(*t, pre, "lump_mass_kg", p.lump_mass_kg);
-      p.k1_N_m = number(*t, pre, "k1_N_m", p.k1_N_m);
-      p.c1_Ns_m = number(*t, pre, "c1_Ns_m", p.c1_Ns_m);
-      p.k2_N_m = number(*t, pre, "k2_N_m", p.k2_N_m);
-      p.c2_Ns_m = number(*t, pre, "c2_Ns_m", p.c2_Ns_m);
-      p.hold_driver_speed = boolean(*t, pre, "hold_driver_speed", p.hold_driver_speed);
-      p.hold_driven_speed = boolean(*t, pre, "hold_driven_speed", p.hold_driven_speed);
-      p.stick_speed_m_s = number(*t, pre, "stick_speed_m_s", p.stick_speed_m_s);
-      p.actuator_tau_s = number(*t, pre, "actuator_tau_s", p.actuator_tau_s);
-      p.clamp_max_N = number(*t, pre, "clamp_max_N", p.clamp_max_N);
-      p.sheave_mass_kg = number(*t, pre, "sheave_mass_kg", p.sheave_mass_kg);
-      p.sheave_damping_Ns_m = number(*t, pre, "sheave_damping_Ns_m", p.sheave_damping_Ns_m);
-      p.K_ax_N_m = number(*t, pre, "K_ax_N_m", p.K_ax_N_m);
-      p.road_T0_Nm = number(*t, pre, "road_T0_Nm", p.road_T0_Nm);
-      p.road_cv_Nms_rad = number(*t, pre, "road_cv_Nms_rad", p.road_cv_Nms_rad);
-      p.road_ca_Nms2_rad2 = number(*t, pre, "road_ca_Nms2_rad2", p.road_ca_Nms2_rad2);
-      p.road_w_eps_rad_s = number(*t, pre, "road_w_eps_rad_s", p.road_w_eps_rad_s);
-      p.zeta1_rad = number(*t, pre, "zeta1_rad", p.zeta1_rad);
-      p.zeta2_rad = number(*t, pre, "zeta2_rad", p.zeta2_rad);
-      p.pitch_m = number(*t, pre, "pitch_m", p.pitch_m);
-      p.driven_clamp_N = number(*t, pre, "driven_clamp_N", p.driven_clamp_N);
-      p.radial_mass_kg = number(*t, pre, "radial_mass_kg", p.radial_mass_kg);
-      p.radial_damping_Ns_m = number(*t, pre, "radial_damping_Ns_m", p.radial_damping_Ns_m);
-      p.radial_travel_m = number(*t, pre, "radial_travel_m", p.radial_travel_m);
-      p.radial_stop_N_m = number(*t, pre, "radial_stop_N_m", p.radial_stop_N_m);
-    }
+    if (const toml::table* t = table(root_, "", "params")) params(*t, p);
     if (const toml::table* t = table(root_, "", "friction")) friction(*t, p.friction);
     if (const toml::table* t = table(root_, "", "initial")) {
       const std::string pre = "initial.";
@@ -303,18 +314,31 @@ class Reader {
 
 }  // namespace
 
-std::shared_ptr<LoadedScene> load_scene_file(const std::string& path) {
+namespace {
+
+toml::table parse_toml_file(const std::string& path, const char* what) {
   std::ifstream in(path);
-  if (!in) throw UsageError{path + ": cannot read the scene file"};
+  if (!in) throw UsageError{path + ": cannot read the " + std::string(what)};
   std::stringstream buf;
   buf << in.rdbuf();
   // Tools build with exceptions on, so toml++ reports syntax errors by throwing.
-  toml::table root;
   try {
-    root = toml::parse(buf.str(), path);
+    return toml::parse(buf.str(), path);
   } catch (const toml::parse_error& e) {
     throw UsageError{path + ":" + std::to_string(e.source().begin.line) + ": syntax: " + std::string(e.description())};
   }
+}
+
+}  // namespace
+
+void apply_params_file(const std::string& path, cvt::Scene& s) {
+  const toml::table root = parse_toml_file(path, "parameter file");
+  Reader r(path, root);
+  r.read_params_only(s);
+}
+
+std::shared_ptr<LoadedScene> load_scene_file(const std::string& path) {
+  const toml::table root = parse_toml_file(path, "scene file");
   auto out = std::make_shared<LoadedScene>();
   Reader r(path, root);
   r.read(*out);

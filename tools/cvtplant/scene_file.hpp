@@ -18,6 +18,11 @@ struct LoadedScene {
 // Reads and validates a scene file; throws UsageError("FILE:LINE: FIELD: why").
 std::shared_ptr<LoadedScene> load_scene_file(const std::string& path);
 
+// Applies a parameter file (a TOML file with a [params] table of RomParams
+// fields, as `cvtplant calibrate --out` writes) to s; throws UsageError like
+// load_scene_file, also if the result fails cvt::validate_scene.
+void apply_params_file(const std::string& path, cvt::Scene& s);
+
 // A built-in scene name or a path to a scene file.
 std::shared_ptr<LoadedScene> resolve_scene(const std::string& name_or_path);
 

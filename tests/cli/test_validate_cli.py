@@ -1,0 +1,136 @@
+#!/usr/bin/env python3
+"""`cvtplant validate` and `cvtplant calibrate` as a user drives them, on a
+shortened span (docs/validation.md): the table, the overlays, the reference
+cache, the parameter file, and bad input."""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+CLI = sys.argv.pop(1) if len(sys.argv) > 1 else "cvtplant"
+SHORT = ["--t-end", "0.2"]
+
+
+def run(*args):
+    return subprocess.run([CLI, *args], capture_output=True, text=True, timeout=600)
+
+
+class Validate(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory()
+        cls.out = os.path.join(cls.tmp.name, "v")
+        cls.first = run("validate", "--scene", "seed-case1", *SHORT, "--out-dir", cls.out, "--json")
+        cls.second = run("validate", "--scene", "seed-case1", *SHORT, "--out-dir", cls.out, "--json")
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def test_json_rows_and_files(self):
+        r = self.first
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(r.stderr, "")  # piped: no progress bar
+        j = json.loads(r.stdout)
+        (s,) = j["scenes"]
+        self.assertEqual(s["status"], "ok")
+        self.assertFalse(s["reference"]["from_cache"])
+        self.assertLessEqual(s["reference"]["energy_residual_rel"], 1e-6)
+        names = [e["quantity"] for e in s["errors"]]
+        for q in ("omega1", "omega2", "ratio omega1/omega2", "F_ax1 (mean)", "torque on the driver", "driver slip"):
+            self.assertIn(q, names)
+        for e in s["errors"]:
+            self.assertIsNotNone(e["rel_rms"], e)
+            self.assertGreaterEqual(e["rel_rms"], 0.0)
+        self.assertTrue(os.path.getsize(s["png"]) > 10000)
+        with open(s["csv"]) as f:
+            lines = f.read().splitlines()
+        self.assertEqual(len(lines), 1 + 201)  # t = 0, 1 ms, ..., 0.2 s
+        # The clamped reference holds its driver clamping at the 3.3 kN the
+        # plant is given: the mean axial forces agree within a few percent.
+        fax = next(e for e in s["errors"] if e["quantity"] == "F_ax1 (mean)")
+        self.assertLess(abs(fax["ss_rel"]), 0.05, fax)
+
+    def test_second_run_reuses_the_reference_and_reports_the_same(self):
+        self.assertEqual(self.second.returncode, 0, self.second.stderr)
+        a = json.loads(self.first.stdout)["scenes"][0]
+        b = json.loads(self.second.stdout)["scenes"][0]
+        self.assertTrue(b["reference"]["from_cache"])
+        self.assertEqual(a["errors"], b["errors"])
+
+    def test_a_changed_input_misses_the_cache(self):
+        r = run("validate", "--scene", "seed-case1", "--t-end", "0.1", "--out-dir", self.out, "--json",
+                "--no-figures")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertFalse(json.loads(r.stdout)["scenes"][0]["reference"]["from_cache"])
+
+    def test_scenes_the_reference_cannot_run_are_named_with_the_reason(self):
+        r = run("validate", "--scene", "tip-in", "--out-dir", self.out, "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        s = json.loads(r.stdout)["scenes"][0]
+        self.assertEqual(s["status"], "not run")
+        self.assertIn("road load", s["reason"])
+
+    def test_text_table(self):
+        r = run("validate", "--scene", "seed-case1", *SHORT, "--out-dir", self.out, "--no-figures")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("| omega1 | rad/s |", r.stdout)
+        self.assertIn("time to gross slip", r.stdout)
+
+
+class BadInput(unittest.TestCase):
+    def check(self, args, needle):
+        r = run(*args)
+        self.assertEqual(r.returncode, 2, (args, r.stdout, r.stderr))
+        self.assertIn(needle, r.stderr)
+        self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
+
+    def test_bad_options(self):
+        with tempfile.TemporaryDirectory() as d:
+            self.check(["validate", "--scene", "no-such-scene", "--out-dir", d], "neither a built-in")
+            self.check(["validate", "--t-end", "nan", "--out-dir", d], "--t-end")
+            self.check(["validate", "--t-end", "-1", "--out-dir", d], "--t-end")
+            self.check(["validate", "--rtol", "1", "--out-dir", d], "--rtol")
+            self.check(["validate", "--scene", "seed-case1", "--max-t-end", "1", "--out-dir", d], "--max-t-end")
+            self.check(["validate", "--scene", "seed-case1", "--out-dir", "/proc/no/such/dir"], "--out-dir")
+            self.check(["calibrate", "--fit", "k9", "--out-dir", d], "--fit: unknown parameter")
+            self.check(["calibrate", "--fit", "k1_N_m,k1_N_m", "--out-dir", d], "twice")
+            self.check(["calibrate", "--scene", "tip-in", "--out-dir", d], "road load")
+            self.check(["calibrate", "--every", "0", "--out-dir", d], "--every")
+            bad = os.path.join(d, "bad.toml")
+            with open(bad, "w") as f:
+                f.write("[params]\nk1_N_m = -5.0\n")
+            self.check(["calibrate", "--scene", "seed-case1", "--start", bad, "--out-dir", d], "k1")
+            with open(bad, "w") as f:
+                f.write("[params]\nk1_typo = 5.0\n")
+            self.check(["calibrate", "--scene", "seed-case1", "--start", bad, "--out-dir", d], "k1_typo")
+
+
+class Calibrate(unittest.TestCase):
+    def test_fit_lowers_the_residual_and_writes_a_loadable_file(self):
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "p.toml")
+            r = run("calibrate", "--scene", "seed-case1", "--t-end", "0.3", "--fit", "r1_m,r2_m", "--every", "5",
+                    "--max-evals", "40", "--out-dir", d, "--out", out, "--json")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            j = json.loads(r.stdout)
+            self.assertLess(j["cost_end"], j["cost_start"])
+            for p in j["parameters"]:
+                self.assertTrue(p["identifiable"], p)
+                self.assertGreater(p["sigma"], 0.0)
+            with open(out) as f:
+                text = f.read()
+            self.assertIn("[params]", text)
+            self.assertIn("cvtplant calibrate --scene seed-case1", text)
+            # The file starts a second fit where the first ended: nothing left to gain.
+            r2 = run("calibrate", "--scene", "seed-case1", "--t-end", "0.3", "--fit", "r1_m,r2_m", "--every", "5",
+                     "--max-evals", "40", "--out-dir", d, "--start", out, "--json")
+            self.assertEqual(r2.returncode, 0, r2.stderr)
+            j2 = json.loads(r2.stdout)
+            self.assertAlmostEqual(j2["cost_start"], j["cost_end"], delta=1e-9 + 1e-6 * j["cost_end"])
+
+
+if __name__ == "__main__":
+    unittest.main()

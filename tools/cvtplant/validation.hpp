@@ -1,0 +1,85 @@
+#pragma once
+// The real-time plant against the multibody reference (docs/validation.md):
+// a plant scene turned into the reference's inputs, reference runs cached on
+// disk by their inputs and the reference's version, both models sampled on
+// the same grid, and the error measures of `cvtplant validate` and
+// `cvtplant calibrate`.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cvtplant/mbd/params.hpp"
+#include "cvtplant/mbd/run.hpp"
+#include "cvtplant/scene/scene.hpp"
+
+namespace cvtcli::validation {
+
+// One time series of either model on the sample grid (SI units).
+struct Series {
+  std::vector<double> t_s, omega1_rad_s, omega2_rad_s, F_ax1_N, torque_driver_Nm, slip1_m_s;
+  std::size_t size() const { return t_s.size(); }
+  void reserve(std::size_t n);
+};
+
+// The reference's inputs for a plant scene, or why it cannot run that scene
+// (a reason in `why_not`). The reference starts from rest with constant
+// torques; a scene needs no road load, no held pulley and zero initial
+// speeds. Its clamping profile drives the reference's clamped sheaves
+// (docs/mbd.md#clamped-sheaves); the scene's geometry, inertias and friction
+// law are copied.
+std::optional<cvt::mbd::MbdParams> reference_params(const cvt::Scene& s, std::string& why_not);
+
+// The text that identifies a reference run: every input and the reference's
+// version (cvt::mbd::kReferenceVersion). Equal texts give equal runs.
+std::string reference_key(const cvt::mbd::MbdParams& p, const cvt::mbd::RunOptions& r);
+
+// 64-bit FNV-1a of the key, as 16 hex digits (the cache file's name).
+std::string key_hash(const std::string& key);
+
+struct ReferenceRun {
+  Series series;
+  bool from_cache = false;
+  double cpu_s = 0, wall_s = 0, ledger_residual_rel = 0;
+  long long steps = 0;
+};
+
+// The reference run for (p, r): read from `cache_dir` if a run with the same
+// key is there, else run (progress bar labelled `label`) and stored. A run
+// that fails (integrator, ledger, step cap) throws RunError naming the time
+// and quantity; nothing is cached then.
+ReferenceRun reference_run(const cvt::mbd::MbdParams& p, const cvt::mbd::RunOptions& r, const std::string& cache_dir,
+                           const std::string& label);
+
+// The plant on the same grid (every frame whose time is a multiple of
+// sample_s). Throws RunError if the plant faults.
+Series plant_run(const cvt::Scene& s, double sample_s);
+
+// Error of one quantity: relative RMS over the run (RMS of the difference over
+// RMS of the reference), and the mean of each over the steady-state window.
+struct ErrorRow {
+  std::string quantity, unit;
+  double rel_rms = 0;
+  double plant_ss = 0, reference_ss = 0, ss_rel = 0;  // ss_rel = (plant - ref) / |ref|
+};
+
+struct Comparison {
+  std::vector<ErrorRow> rows;
+  double window_s = 0;  // steady-state window: the last second (or the last half of a shorter run)
+  double ripple_plant_N = 0, ripple_reference_N = 0;  // F_ax1 peak to peak over the window
+  // Time of the first sample whose driver slip exceeds kGrossSlip_m_s
+  // (negative: never).
+  double gross_slip_plant_s = -1, gross_slip_reference_s = -1;
+};
+
+// Driver slip speed above which the wrap is in gross slip [m/s].
+inline constexpr double kGrossSlip_m_s = 1.0;
+
+// plant and reference must share the grid (same t_s).
+Comparison compare(const Series& plant, const Series& reference);
+
+// Relative RMS of plant - reference over one column (samples where either is
+// NaN left out): RMS of the difference over RMS of the reference.
+double rel_rms(const std::vector<double>& plant, const std::vector<double>& reference);
+
+}  // namespace cvtcli::validation
