@@ -293,10 +293,13 @@ class Msg:
         self.timeout_ms = int(a.get("CvtRxTimeout", 0))
         self.data_id = int(a.get("CvtE2EDataID", 0))
         self.max_delta = int(a.get("CvtE2EMaxDeltaCounter", 2))
+        self.sync_init = int(a.get("CvtE2ESyncCounterInit", 1))
         if self.data_id == 0:
             raise DbcError("%s: no CvtE2EDataID; every message on this bus is E2E protected" % self.name)
         if not (1 <= self.max_delta <= 14):
             raise DbcError("%s: CvtE2EMaxDeltaCounter must be 1..14" % self.name)
+        if not (0 <= self.sync_init <= 14):
+            raise DbcError("%s: CvtE2ESyncCounterInit must be 0..14" % self.name)
         sigs = {s.name: s for s in f.signals}
         crc, ctr = sigs.get("E2E_CRC"), sigs.get("E2E_Counter")
         if crc is None or ctr is None:
@@ -394,6 +397,7 @@ def generate(path):
         w("  static constexpr uint8_t kDlc = %d;" % m.dlc)
         w("  static constexpr uint16_t kE2eDataId = 0x%04Xu;" % m.data_id)
         w("  static constexpr uint8_t kE2eMaxDeltaCounter = %d;" % m.max_delta)
+        w("  static constexpr uint8_t kE2eSyncCounterInit = %d;" % m.sync_init)
         w("  static constexpr uint16_t kCycleTime_ms = %d;" % m.cycle_ms)
         w("  static constexpr uint16_t kRxTimeout_ms = %d;" % m.timeout_ms)
         w('  static constexpr const char* kName = "%s";' % m.name)
@@ -464,6 +468,7 @@ def generate(path):
     w("  uint8_t dlc;")
     w("  uint16_t e2e_data_id;")
     w("  uint8_t e2e_max_delta_counter;")
+    w("  uint8_t e2e_sync_counter_init;")
     w("  uint16_t cycle_time_ms;")
     w("  uint16_t rx_timeout_ms;")
     w("  const char* name;")
@@ -471,7 +476,8 @@ def generate(path):
     w("")
     w("inline constexpr MessageInfo kMessages[kMessageCount] = {")
     for m in msgs:
-        w("    {%s::kId, %s::kDlc, %s::kE2eDataId, %s::kE2eMaxDeltaCounter, %s::kCycleTime_ms, %s::kRxTimeout_ms, %s::kName}," % ((m.name,) * 7))
+        w("    {%s::kId, %s::kDlc, %s::kE2eDataId, %s::kE2eMaxDeltaCounter, %s::kE2eSyncCounterInit, %s::kCycleTime_ms," % ((m.name,) * 6))
+        w("     %s::kRxTimeout_ms, %s::kName}," % ((m.name,) * 2))
     w("};")
     w("")
     w("// Index into kMessages, or -1 for an ID this bus does not define.")
@@ -537,6 +543,9 @@ def generate(path):
     w("    }")
     w("    return r;")
     w("  }")
+    w("  // The deadline of `id` expired (docs/can.md#timeouts).")
+    w("  void require_resync(MessageId id) noexcept { checkers_[static_cast<uint8_t>(id)].require_resync(); }")
+    w("  // A new run: forget the sender of `id`.")
     w("  void reset(MessageId id) noexcept { checkers_[static_cast<uint8_t>(id)].reset(); }")
     w("  void reset_all() noexcept {")
     w("    for (E2eChecker& c : checkers_) c.reset();")
@@ -546,7 +555,8 @@ def generate(path):
     w(" private:")
     w("  E2eChecker checkers_[kMessageCount] = {")
     for m in msgs:
-        w("      E2eChecker{%s::kE2eDataId, E2eCheckerConfig{%s::kE2eMaxDeltaCounter}}," % (m.name, m.name))
+        w("      E2eChecker{%s::kE2eDataId, E2eCheckerConfig{%s::kE2eMaxDeltaCounter, %s::kE2eSyncCounterInit}}," % (
+            m.name, m.name, m.name))
     w("  };")
     w("};")
     w("")

@@ -353,6 +353,41 @@ TEST_CASE("receive pipeline: E2E first, then values; nothing applied on reject")
   f.id = 0x7FF;
   r = rx.receive(f, any);
   CHECK(r.codec == CodecStatus::UnknownId);
+
+  // A counter jump (counter 9 after 1) with an out-of-range value: rejected
+  // by the range check and not adopted for re-synchronisation.
+  uint8_t jump[8] = {0, 0x09, 0x61, 0xEA, 0, 0, 0, 0};
+  jump[0] = e2e_crc(CtrlCmd::kE2eDataId, jump);
+  CanFrame j = f;
+  j.id = CtrlCmd::kId;
+  std::memcpy(j.data, jump, 8);
+  r = rx.receive(j, any);
+  CHECK(r.e2e == E2eStatus::WrongSequence);
+  CHECK(r.codec == CodecStatus::OutOfRange);
+  CHECK(rx.checker(MessageId::CtrlCmd).last_counter() == 1);
+  CHECK_FALSE(rx.checker(MessageId::CtrlCmd).resynchronising());
+  // The same jump with a valid value: still not applied, but adopted; the
+  // next in-sequence frame is Sync (not applied), the one after it is OK.
+  jump[2] = 0x88;  // 5000 N
+  jump[3] = 0x13;
+  jump[0] = e2e_crc(CtrlCmd::kE2eDataId, jump);
+  std::memcpy(j.data, jump, 8);
+  any.ctrl_cmd.clamp_force_cmd_N = -1.0f;
+  r = rx.receive(j, any);
+  CHECK(r.e2e == E2eStatus::WrongSequence);
+  CHECK(r.codec == CodecStatus::Ok);
+  CHECK_FALSE(r.accepted());
+  CHECK(any.ctrl_cmd.clamp_force_cmd_N == -1.0f);
+  CHECK(rx.checker(MessageId::CtrlCmd).last_counter() == 9);
+  for (const E2eStatus expect : {E2eStatus::Sync, E2eStatus::Ok}) {
+    jump[1] = static_cast<uint8_t>(jump[1] + 1);
+    jump[0] = e2e_crc(CtrlCmd::kE2eDataId, jump);
+    std::memcpy(j.data, jump, 8);
+    r = rx.receive(j, any);
+    CHECK(r.e2e == expect);
+  }
+  CHECK(r.accepted());
+  CHECK(any.ctrl_cmd.clamp_force_cmd_N == 5000.0f);
 }
 
 TEST_CASE("timeout reaction values come from the DBC") {

@@ -149,10 +149,11 @@ void print_summary(std::FILE* out, const Options& o, const cvt::sil::Bridge& b,
                "  \"rx\": {\"accepted\": %llu, \"rejected\": %llu, \"not_data_frame\": %llu, \"unknown_id\": %llu, "
                "\"wrong_dlc\": %llu, \"wrong_crc\": %llu, \"repeated\": %llu, \"wrong_sequence\": %llu, "
                "\"out_of_range\": %llu, \"invalid_enum\": %llu, \"error_frames\": %llu, \"stale_discarded\": %llu, "
-               "\"plant_ids_ignored\": %llu, \"requests_ignored\": %llu},\n",
+               "\"plant_ids_ignored\": %llu, \"requests_ignored\": %llu, \"resync_withheld\": %llu},\n",
                u(rx.accepted), u(rx.rejected()), u(rx.not_data_frame), u(rx.unknown_id), u(rx.wrong_dlc),
                u(rx.wrong_crc), u(rx.repeated), u(rx.wrong_sequence), u(rx.out_of_range), u(rx.invalid_enum),
-               u(rx.error_frames), u(rx.stale_discarded), u(rx.plant_ids_ignored), u(rx.requests_ignored));
+               u(rx.error_frames), u(rx.stale_discarded), u(rx.plant_ids_ignored), u(rx.requests_ignored),
+               u(rx.resync_withheld));
   std::fprintf(out,
                "  \"tx\": {\"sent\": %llu, \"failed\": %llu, \"bus_off_refused\": %llu, \"saturated\": %llu, "
                "\"enobufs_retries\": %llu, \"dropped\": %llu},\n",

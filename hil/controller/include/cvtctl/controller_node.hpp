@@ -19,6 +19,7 @@ namespace cvtctl {
 struct ControllerCounters {
   std::uint32_t accepted = 0;
   std::uint32_t rejected = 0;        // any receive-pipeline rejection
+  std::uint32_t resync_withheld = 0; // valid frames withheld while E2E re-synchronises (docs/can.md#e2e-checker)
   std::uint32_t error_frames = 0;
   std::uint32_t invalid_periods = 0; // control periods without a complete group
   std::uint32_t tx_failed = 0;
@@ -104,7 +105,8 @@ class ControllerNode {
     }
     const cvt::can::RxResult r = rx_.receive(f, any_);
     if (!r.accepted()) {
-      ++counters_.rejected;
+      if (r.e2e == cvt::can::E2eStatus::Sync && r.codec == cvt::can::CodecStatus::Ok) ++counters_.resync_withheld;
+      else ++counters_.rejected;
       return;
     }
     ++counters_.accepted;

@@ -40,6 +40,7 @@ struct RxCounts {
   std::uint64_t wrong_crc = 0;
   std::uint64_t repeated = 0;        // E2E counter equal to the last accepted one
   std::uint64_t wrong_sequence = 0;  // counter jump > max delta, or 15
+  std::uint64_t resync_withheld = 0; // valid, in sequence, but E2E re-synchronising: not used (not a rejection)
   std::uint64_t out_of_range = 0;
   std::uint64_t invalid_enum = 0;
   std::uint64_t error_frames = 0;    // reported, never decoded (docs/sil.md#robustness)
@@ -264,6 +265,10 @@ class Bridge {
   void count_rejection(const can::RxResult& r) {
     using can::CodecStatus;
     using can::E2eStatus;
+    if (r.e2e == E2eStatus::Sync && r.codec == CodecStatus::Ok) {
+      ++rx_.resync_withheld;
+      return;
+    }
     if (r.e2e == E2eStatus::WrongCrc) ++rx_.wrong_crc;
     else if (r.e2e == E2eStatus::Repeated) ++rx_.repeated;
     else if (r.e2e == E2eStatus::WrongSequence) ++rx_.wrong_sequence;
