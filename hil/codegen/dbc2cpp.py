@@ -148,11 +148,14 @@ class Sig:
             raise DbcError("%s: GenSigStartValue %d is not in the VAL_ table" % (where, init_raw))
         self.init_raw = init_raw
         self.timeout_action = self.attrs.get("CvtTimeoutAction", "None")
-        if self.timeout_action not in ("None", "Replace", "Substitute"):
+        if self.timeout_action not in ("None", "Replace", "Substitute", "Ramp"):
             raise DbcError("%s: unknown CvtTimeoutAction %r" % (where, self.timeout_action))
         self.substitute = Decimal(str(self.attrs.get("CvtSubstituteValue", "0")))
-        if self.timeout_action == "Substitute" and not (self.min <= self.substitute <= self.max):
+        self.rate = Decimal(str(self.attrs.get("CvtSubstituteRate", "0")))
+        if self.timeout_action in ("Substitute", "Ramp") and not (self.min <= self.substitute <= self.max):
             raise DbcError("%s: CvtSubstituteValue outside [min|max]" % where)
+        if self.timeout_action == "Ramp" and (self.kind != "float" or not self.rate > 0):
+            raise DbcError("%s: Ramp needs a scaled (float) signal and CvtSubstituteRate > 0" % where)
         if self.kind == "enum":
             self.enum_name = camel(self.name)
 
@@ -445,7 +448,8 @@ def generate(path):
         w("  return CodecStatus::Ok;")
         w("}")
         w("")
-        w("// Value to use after a receive timeout (docs/can.md#timeouts).")
+        w("// Value to use from a receive timeout on (docs/can.md#timeouts). Ramp")
+        w("// signals start from the last value and move with rx_timeout_ramp().")
         w("constexpr %s on_rx_timeout(const %s& last) noexcept {" % (m.name, m.name))
         w("  %s m = last;" % m.name)
         for s in m.signals:
@@ -453,6 +457,19 @@ def generate(path):
                 w("  m.%s = %s;  // Replace: init value" % (s.name, s.cpp_value(raw=s.init_raw)))
             elif s.timeout_action == "Substitute":
                 w("  m.%s = %s;  // Substitute" % (s.name, s.cpp_value(phys=s.substitute)))
+        w("  return m;")
+        w("}")
+        w("")
+        ramps = [s for s in m.signals if s.timeout_action == "Ramp"]
+        w("// While timed out, once per dt_s [s]: each Ramp signal moves toward its")
+        w("// substitute value by at most CvtSubstituteRate * dt_s.")
+        w("constexpr %s rx_timeout_ramp(const %s& current, float dt_s) noexcept {" % (m.name, m.name))
+        w("  %s m = current;" % m.name)
+        if not ramps:
+            w("  (void)dt_s;")
+        for s in ramps:
+            w("  m.%s = ramp_toward(m.%s, %s, %s * dt_s);  // Ramp, %s %s/s" % (
+                s.name, s.name, s.cpp_value(phys=s.substitute), flit(s.rate), format(s.rate.normalize(), "f"), s.unit or "1"))
         w("  return m;")
         w("}")
         w("")

@@ -145,7 +145,9 @@ TEST_CASE("CAN link over loopback: E2E, codec and the timeout reaction") {
   CHECK(clk.now_ns() - last_rx_ns >= can::CtrlCmd::kRxTimeout_ms * 1000000LL);
   applied = can::on_rx_timeout(applied);
   rx.require_resync();
-  CHECK(applied.clamp_force_cmd_N == 20000.0f);
+  CHECK(applied.clamp_force_cmd_N == 1190.0f);  // the DBC's Ramp starts from the last value
+  applied = can::rx_timeout_ramp(applied, 0.5f);
+  CHECK(applied.clamp_force_cmd_N == 20000.0f);  // 1190 + 25000 capped at the substitute
   CHECK(rx.checker().resynchronising());
 }
 

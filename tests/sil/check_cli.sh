@@ -21,6 +21,7 @@ expect 2 "$BRIDGE" --scene no-such-scene
 expect 2 "$BRIDGE" --duration-s -1
 expect 2 "$BRIDGE" --sched-fifo 100
 expect 2 "$BRIDGE" --log-clock wall
+expect 2 "$BRIDGE" --cmd-timeout-reaction substitute
 expect 2 "$BRIDGE" --iface
 expect 1 "$BRIDGE" --iface nosuchcan0
 expect 0 "$SIL" --help

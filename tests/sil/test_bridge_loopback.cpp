@@ -4,6 +4,8 @@
 #define DOCTEST_CONFIG_IMPLEMENT_WITH_MAIN
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <vector>
 
@@ -161,7 +163,7 @@ TEST_CASE("lock-step: the latest valid command drives the plant and two runs are
   CHECK(sim.outputs().clamp_force_N == oa.clamp_force_N);
 }
 
-TEST_CASE("lock-step command timeout: substitute 20 kN / 0 N m, fault flag, counted, recovery") {
+TEST_CASE("lock-step command timeout: ramps from the last command, fault flag, counted once, recovery") {
   Rig rig;
   rig.peer.send_cmd(5000.0f, 50.0f);
   Group g = rig.step(50);  // frames start at 0..49 ms: 49 ms since the command
@@ -169,38 +171,110 @@ TEST_CASE("lock-step command timeout: substitute 20 kN / 0 N m, fault flag, coun
   CHECK_FALSE(g.status.fault_cmd_timeout);
   CHECK(rig.bridge.current_inputs().clamp_N == 5000.0);
 
-  g = rig.step(1);  // the frame starting at 50 ms sees the deadline
+  // The frame starting at 50 ms sees the deadline. DBC: clamp ramps toward
+  // 20 kN at 50 kN/s, torque toward 0 at 250 N m/s, one 1 ms step per frame.
+  g = rig.step(1);
   CHECK(rig.bridge.cmd_state() == Bridge::CmdState::TimedOut);
   CHECK(g.status.fault_cmd_timeout);
-  CHECK(rig.bridge.current_inputs().clamp_N == 20000.0);
-  CHECK(rig.bridge.current_inputs().tau_in_Nm == 0.0);
   CHECK(rig.bridge.cmd_timeouts() == 1);
-
-  g = rig.step(49);  // 100 ms: PlantDiag carries the count; no second event
+  double prev_clamp = 5000.0;
+  for (int j = 1; j <= 400; ++j) {
+    // Frame j after the deadline used the command ramped by j steps.
+    CAPTURE(j);
+    const RomInputs<double> u = rig.bridge.current_inputs();
+    CHECK(u.clamp_N == doctest::Approx(std::min(20000.0, 5000.0 + 50.0 * j)).epsilon(1e-6));
+    CHECK(u.tau_in_Nm == doctest::Approx(std::max(0.0, 50.0 - 0.25 * j)).epsilon(1e-6));
+    CHECK(u.clamp_N - prev_clamp <= 50.001);  // never a step
+    prev_clamp = u.clamp_N;
+    g = rig.step(1);
+    CHECK(g.status.fault_cmd_timeout);
+  }
+  CHECK(rig.bridge.current_inputs().clamp_N == 20000.0);  // reached, never passed
+  CHECK(rig.bridge.current_inputs().tau_in_Nm == 0.0);
+  g = rig.step(49);  // to 500 ms: PlantDiag carries the count; one event per outage
   REQUIRE(g.has_diag);
   CHECK(g.diag.cmd_timeouts == 1);
-  CHECK(g.status.fault_cmd_timeout);
-  // The clamp follows the substitute through the actuator lag (20 ms).
-  CHECK(g.forces.driver_axial_force_N > 15000.0f);
+  CHECK(g.forces.driver_axial_force_N > 19900.0f);
 
-  // Recovery: the checker was reset, so a fresh frame is accepted whatever
-  // its counter; the flag clears with the next status.
-  rig.peer.cmd.reset();
+  // Recovery: the checker kept its reference, so the controller's next
+  // frame (counter advanced) is a Sync frame, not used; the one after it is.
+  rig.peer.send_cmd(6000.0f, 40.0f);
+  g = rig.step(1);
+  CHECK(rig.bridge.cmd_state() == Bridge::CmdState::TimedOut);
+  CHECK(rig.bridge.rx().resync_withheld == 1);
+  CHECK(g.status.fault_cmd_timeout);
   rig.peer.send_cmd(6000.0f, 40.0f);
   g = rig.step(1);
   CHECK(rig.bridge.cmd_state() == Bridge::CmdState::Valid);
   CHECK_FALSE(g.status.fault_cmd_timeout);
   CHECK(rig.bridge.current_inputs().clamp_N == 6000.0);
+  CHECK(rig.bridge.cmd_timeouts() == 1);
 }
 
-TEST_CASE("monitoring starts on entering lock-step even without any command") {
+TEST_CASE("command timeout, hold-last: the last applied command stays, bit for bit") {
+  Rig rig;
+  rig.bridge.set_cmd_timeout_reaction(sil::CmdTimeoutReaction::HoldLast);
+  rig.peer.send_cmd(5000.0f, 50.0f);
+  rig.step(50);
+  Group g = rig.step(1);
+  CHECK(g.status.fault_cmd_timeout);
+  for (int j = 0; j < 300; ++j) {
+    CHECK(rig.bridge.current_inputs().clamp_N == 5000.0);
+    CHECK(rig.bridge.current_inputs().tau_in_Nm == 50.0);
+    rig.step(1);
+  }
+  CHECK(rig.bridge.cmd_timeouts() == 1);
+}
+
+TEST_CASE("monitoring starts on entering lock-step; without any command the ramp starts from the scene's profile") {
   Rig rig;
   Group g = rig.step(50);
   CHECK(rig.bridge.cmd_state() == Bridge::CmdState::NoneYet);
   CHECK(rig.bridge.current_inputs().clamp_N == 4000.0);  // tip-in scene profile until then
   g = rig.step(1);
   CHECK(g.status.fault_cmd_timeout);
-  CHECK(rig.bridge.current_inputs().clamp_N == 20000.0);
+  CHECK(rig.bridge.current_inputs().clamp_N == doctest::Approx(4050.0).epsilon(1e-6));
+}
+
+namespace {
+
+// Lowest torque-capacity safety factor 2 mu0 F_ax r1 / (cos(beta) |tau|) of
+// the tip-in plant (docs/sil.md#criteria) over `periods` 10 ms periods, with
+// the controller silent from period 10 on and the harness raising the load
+// to `load_Nm` at period 20.
+double min_safety_during_outage(sil::CmdTimeoutReaction reaction, float load_Nm, int periods) {
+  Rig rig;
+  rig.bridge.set_cmd_timeout_reaction(reaction);
+  can::HarnessLoad hl;
+  double min_sf = 1e9;
+  for (int k = 0; k < periods; ++k) {
+    // The example controller's feed-forward for 60 N m at safety 1.3.
+    if (k < 10) rig.peer.send_cmd(1.3f * 60.0f * 0.96592583f / (2.0f * 0.25f * 0.0762f), 60.0f);
+    hl.load_override_active = true;
+    hl.load_torque_override_Nm = k < 20 ? 20.0f : load_Nm;
+    can::CanFrame f;
+    REQUIRE(rig.peer.load.encode(hl, f) == can::CodecStatus::Ok);
+    REQUIRE(rig.bus.node(1).send(f) == CanIoStatus::Ok);
+    const Group g = rig.step(10);
+    const double tau = std::max(1.0, std::fabs(static_cast<double>(g.speeds.torque_transmitted_Nm)));
+    const double sf = 2.0 * 0.25 * g.forces.driver_axial_force_N * 0.0762 / (0.96592583 * tau);
+    if (k >= 5) min_sf = std::min(min_sf, sf);
+  }
+  return min_sf;
+}
+
+}  // namespace
+
+TEST_CASE("command timeout, the consequence: hold-last lets the belt slip when the load rises, the ramp does not") {
+  // The controller goes silent while the harness raises the load from 20 to
+  // 200 N m. Hold-last keeps the clamping the controller sized for 60 N m:
+  // the lumps slide (factor 1.00, docs/sil.md#criteria). The DBC ramp
+  // raises the clamp toward 20 kN: the belt holds.
+  const double hold = min_safety_during_outage(sil::CmdTimeoutReaction::HoldLast, 200.0f, 150);
+  const double ramp = min_safety_during_outage(sil::CmdTimeoutReaction::Dbc, 200.0f, 150);
+  MESSAGE("min torque-capacity safety factor during the outage: hold-last " << hold << ", ramp " << ramp);
+  CHECK(hold < 1.02);
+  CHECK(ramp > 1.05);
 }
 
 namespace {
@@ -376,14 +450,91 @@ TEST_CASE("real time: frames queued during a command outage are drained, not app
   rig.bridge.realtime_frame();
   CHECK(rig.bridge.cmd_state() == Bridge::CmdState::TimedOut);
   CHECK(rig.bridge.rx().stale_discarded == 5);
-  CHECK(rig.bridge.command().clamp_force_cmd_N == 20000.0f);
+  CHECK(rig.bridge.command().clamp_force_cmd_N == 5050.0f);  // the ramp's first 1 ms step
 
-  // The next fresh frame is the new reference.
-  rig.peer.send_cmd(7000.0f, 30.0f);
-  rig.bridge.realtime_frame();
-  CHECK(rig.bridge.cmd_state() == Bridge::CmdState::Valid);
+  // Fresh frames: the first jumps over the five drained counters and becomes
+  // the new reference, the second is the Sync frame, the third is used.
+  for (int i = 0; i < 3; ++i) {
+    rig.peer.send_cmd(7000.0f, 30.0f);
+    rig.bridge.realtime_frame();
+    CHECK(rig.bridge.cmd_state() == (i < 2 ? Bridge::CmdState::TimedOut : Bridge::CmdState::Valid));
+  }
+  CHECK(rig.bridge.rx().wrong_sequence == 1);
+  CHECK(rig.bridge.rx().resync_withheld == 1);
   CHECK(rig.bridge.command().clamp_force_cmd_N == 7000.0f);
   CHECK(rig.bridge.cmd_timeouts() == 1);
+}
+
+namespace {
+// A controller that hangs but whose CAN driver keeps sending its last
+// mailbox: the identical frame (same counter, same CRC) every 10 ms.
+struct FrozenController {
+  can::CanFrame last;
+  int sent = 0;
+};
+}  // namespace
+
+TEST_CASE("frozen controller, lock-step: its repeated frame is never applied again, one timeout per outage") {
+  for (const auto reaction : {sil::CmdTimeoutReaction::Dbc, sil::CmdTimeoutReaction::HoldLast}) {
+    CAPTURE(sil::to_string(reaction));
+    Rig rig;
+    rig.bridge.set_cmd_timeout_reaction(reaction);
+    for (int k = 0; k < 10; ++k) {
+      rig.peer.send_cmd(3000.0f + 100.0f * static_cast<float>(k), 40.0f);
+      rig.step(10);
+    }
+    FrozenController frozen{rig.peer.cmd_frame(4000.0f, 40.0f)};
+    // Frozen for 500 ms: ten deadlines' worth.
+    for (int k = 0; k < 50; ++k) {
+      REQUIRE(rig.bus.node(1).send(frozen.last) == CanIoStatus::Ok);
+      ++frozen.sent;
+      const Group g = rig.step(10);
+      if (k == 0) {
+        CHECK(rig.bridge.command().clamp_force_cmd_N == 4000.0f);  // its last fresh frame, once
+        CHECK_FALSE(g.status.fault_cmd_timeout);
+      }
+      if (k >= 5) {
+        CHECK(g.status.fault_cmd_timeout);
+        CHECK(rig.bridge.cmd_state() == Bridge::CmdState::TimedOut);
+      }
+    }
+    CHECK(rig.bridge.rx().repeated == static_cast<uint64_t>(frozen.sent - 1));
+    CHECK(rig.bridge.cmd_timeouts() == 1);
+    if (reaction == sil::CmdTimeoutReaction::Dbc) {
+      // 500 ms - 50 ms of ramp from 4 kN: at 20 kN, never back at 4 kN.
+      CHECK(rig.bridge.current_inputs().clamp_N == 20000.0);
+    }
+    // It comes back: the counter advances, one Sync frame, then used.
+    rig.peer.send_cmd(4500.0f, 40.0f);
+    rig.step(10);
+    CHECK(rig.bridge.cmd_state() == Bridge::CmdState::TimedOut);
+    rig.peer.send_cmd(4600.0f, 40.0f);
+    const Group g = rig.step(10);
+    CHECK_FALSE(g.status.fault_cmd_timeout);
+    CHECK(rig.bridge.command().clamp_force_cmd_N == 4600.0f);
+    CHECK(rig.bridge.cmd_timeouts() == 1);
+  }
+}
+
+TEST_CASE("frozen controller, real time: its repeated frame is never applied again, one timeout per outage") {
+  Rig rig;
+  rig.bridge.start_realtime();
+  FrozenController frozen{rig.peer.cmd_frame(4000.0f, 40.0f)};
+  bool applied_after_timeout = false;
+  for (int ms = 0; ms < 500; ++ms) {
+    if (ms % 10 == 0) REQUIRE(rig.bus.node(1).send(frozen.last) == CanIoStatus::Ok);
+    rig.bridge.realtime_frame();
+    if (rig.bridge.cmd_timeouts() > 0 && rig.bridge.cmd_state() == Bridge::CmdState::Valid)
+      applied_after_timeout = true;
+    rig.clock.advance(1000000);
+  }
+  CHECK(rig.bridge.cmd_timeouts() == 1);
+  CHECK_FALSE(applied_after_timeout);
+  // The first copy is used once; the one queued when the deadline expired
+  // is drained; every later copy is REPEATED.
+  CHECK(rig.bridge.rx().stale_discarded == 1);
+  CHECK(rig.bridge.rx().repeated == 48);
+  CHECK(rig.bridge.current_inputs().clamp_N == 20000.0);
 }
 
 TEST_CASE("real time: cyclic frames follow the DBC cycle times") {

@@ -395,8 +395,22 @@ TEST_CASE("timeout reaction values come from the DBC") {
   last.clamp_force_cmd_N = 3000.0f;
   last.driver_torque_req_Nm = 150.0f;
   const CtrlCmd t = on_rx_timeout(last);
-  CHECK(t.clamp_force_cmd_N == 20000.0f);  // Substitute: high clamp
-  CHECK(t.driver_torque_req_Nm == 0.0f);   // Replace: init
+  CHECK(t.clamp_force_cmd_N == 3000.0f);  // Ramp: starts from the last value
+  CHECK(t.driver_torque_req_Nm == 150.0f);
+  // Ramp: 50000 N/s toward 20000 N, 250 N m/s toward 0, never past.
+  const CtrlCmd r = rx_timeout_ramp(t, 0.125f);
+  CHECK(r.clamp_force_cmd_N == 3000.0f + 6250.0f);
+  CHECK(r.driver_torque_req_Nm == 150.0f - 31.25f);
+  const CtrlCmd end = rx_timeout_ramp(t, 10.0f);
+  CHECK(end.clamp_force_cmd_N == 20000.0f);
+  CHECK(end.driver_torque_req_Nm == 0.0f);
+  CtrlCmd high;
+  high.clamp_force_cmd_N = 30000.0f;
+  high.driver_torque_req_Nm = -100.0f;
+  const CtrlCmd down = rx_timeout_ramp(high, 0.125f);
+  CHECK(down.clamp_force_cmd_N == 30000.0f - 6250.0f);  // toward 20 kN from above too
+  CHECK(down.driver_torque_req_Nm == -100.0f + 31.25f);
+  CHECK(ramp_toward(5.0f, 5.0f, 1.0f) == 5.0f);
   HarnessLoad h;
   h.load_override_active = true;
   h.load_torque_override_Nm = 80.0f;

@@ -36,6 +36,11 @@ const char kUsage[] =
     "  --log-clock CLOCK     log timestamps: host (CLOCK_MONOTONIC, default) or sim\n"
     "  --summary FILE        write the JSON summary to FILE (default stdout)\n"
     "  --sched-fifo PRIO     real time: try SCHED_FIFO at PRIO (1..99) and mlockall\n"
+    "  --cmd-timeout-reaction R\n"
+    "                        what the plant applies while CtrlCmd is timed out:\n"
+    "                        dbc (default): the DBC's ramps from the last applied\n"
+    "                        values (clamp to 20 kN at 50 kN/s, torque to 0 at\n"
+    "                        250 N m/s); hold-last: keep the last applied values\n"
     "  --ready-file FILE     created once the interface is open\n"
     "  -h, --help            this text\n"
     "Exit status: 0 done, 1 run failure (interface, scene), 2 bad command line.\n";
@@ -49,6 +54,7 @@ struct Options {
   std::string log, summary, ready_file;
   bool log_sim_clock = false;
   int sched_fifo = 0;
+  cvt::sil::CmdTimeoutReaction cmd_reaction = cvt::sil::CmdTimeoutReaction::Dbc;
 };
 
 [[noreturn]] void bad_usage(const std::string& msg) {
@@ -74,7 +80,8 @@ Options parse(int argc, char** argv) {
       std::exit(0);
     }
     static const char* const kValueFlags[] = {"--iface", "--scene", "--mode", "--duration-s", "--idle-exit-s", "--log",
-                                              "--log-clock", "--summary", "--ready-file", "--sched-fifo"};
+                                              "--log-clock", "--summary", "--ready-file", "--sched-fifo",
+                                              "--cmd-timeout-reaction"};
     bool known = false;
     for (const char* k : kValueFlags) known = known || a == k;
     if (!known) bad_usage(a.rfind("--", 0) == 0 ? "unknown option '" + a + "'" : "unexpected argument '" + a + "'");
@@ -93,6 +100,10 @@ Options parse(int argc, char** argv) {
       const std::string c = v;
       if (c == "sim") o.log_sim_clock = true;
       else if (c != "host") bad_usage("--log-clock: expected host or sim, got '" + c + "'");
+    } else if (a == "--cmd-timeout-reaction") {
+      const std::string r = v;
+      if (r == "hold-last") o.cmd_reaction = cvt::sil::CmdTimeoutReaction::HoldLast;
+      else if (r != "dbc") bad_usage("--cmd-timeout-reaction: expected dbc or hold-last, got '" + r + "'");
     } else if (a == "--summary") o.summary = v;
     else if (a == "--ready-file") o.ready_file = v;
     else if (a == "--sched-fifo") {
@@ -161,8 +172,8 @@ void print_summary(std::FILE* out, const Options& o, const cvt::sil::Bridge& b,
                u(tc.tx_dropped));
   std::fprintf(out, "  \"bus\": {\"bus_off_events\": %llu, \"rx_kernel_drops\": %llu, \"rx_invalid\": %llu},\n",
                u(tc.bus_off_events), u(tc.rx_kernel_drops), u(tc.rx_invalid));
-  std::fprintf(out, "  \"cmd_timeouts\": %llu,\n  \"load_timeouts\": %llu,\n", u(b.cmd_timeouts()),
-               u(b.load_timeouts()));
+  std::fprintf(out, "  \"cmd_timeouts\": %llu,\n  \"load_timeouts\": %llu,\n  \"cmd_timeout_reaction\": \"%s\",\n",
+               u(b.cmd_timeouts()), u(b.load_timeouts()), cvt::sil::to_string(b.cmd_timeout_reaction()));
   std::fprintf(out, "  \"realtime\": ");
   if (!rt.ran) {
     std::fprintf(out, "null\n}\n");
@@ -219,6 +230,7 @@ int main(int argc, char** argv) {
   CandumpLog log(logf, o.iface, o.log_sim_clock);
   cvt::port::PosixMonotonicClock clock;
   static cvt::sil::Bridge bridge(bus, clock, logf != nullptr ? &log : nullptr);
+  bridge.set_cmd_timeout_reaction(o.cmd_reaction);
   if (!bridge.load_scene(*cvt::find_builtin_scene(o.scene.c_str()))) {
     std::fprintf(stderr, "cvtplant-bridge: scene %s: this bridge has no plant for its features/frame\n",
                  o.scene.c_str());

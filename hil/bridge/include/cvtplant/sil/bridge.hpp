@@ -100,6 +100,16 @@ std::uint32_t saturate_to_dbc(Msg& m) noexcept {
   return n;
 }
 
+// What the plant applies while CtrlCmd is timed out (docs/sil.md#timeouts).
+enum class CmdTimeoutReaction : std::uint8_t {
+  Dbc,       // the DBC's CvtTimeoutAction: ramps from the last applied values
+  HoldLast,  // every CtrlCmd signal keeps the last applied value
+};
+
+inline const char* to_string(CmdTimeoutReaction r) noexcept {
+  return r == CmdTimeoutReaction::HoldLast ? "hold-last" : "dbc";
+}
+
 class Bridge {
  public:
   enum class CmdState : std::uint8_t { NoneYet, Valid, TimedOut };
@@ -132,6 +142,9 @@ class Bridge {
 
   // Switch to real time now (also what SimCtrl RunRealTime does).
   void start_realtime() { enter_mode(can::PlantMode::RealTime); }
+
+  void set_cmd_timeout_reaction(CmdTimeoutReaction r) noexcept { cmd_reaction_ = r; }
+  CmdTimeoutReaction cmd_timeout_reaction() const noexcept { return cmd_reaction_; }
 
   // One paced frame (docs/sil.md#real-time): deadlines on the host clock,
   // then the receive queue (drained of stale commands after a timeout),
@@ -233,12 +246,18 @@ class Bridge {
     mode_ = m;
   }
 
+  // docs/sil.md#timeouts: the reaction starts from what the plant applies
+  // now (a command, or the scene's profile before the first one); the E2E
+  // checker keeps its reference and has to re-synchronise, so a frozen
+  // controller's repeated frame is never used again; flag; count once.
   void check_deadlines(std::int64_t now) {
     if (cmd_monitor_ && cmd_state_ != CmdState::TimedOut && now - cmd_last_ns_ >= kCmdTimeout_ns) {
-      // docs/can.md#timeouts: substitute/replace, reset the checker, flag, count.
-      cmd_ = can::on_rx_timeout(cmd_);
+      const RomInputs<double> u = current_inputs();
+      cmd_.clamp_force_cmd_N = static_cast<float>(u.clamp_N);
+      cmd_.driver_torque_req_Nm = static_cast<float>(u.tau_in_Nm);
+      if (cmd_reaction_ == CmdTimeoutReaction::Dbc) cmd_ = can::on_rx_timeout(cmd_);
       cmd_state_ = CmdState::TimedOut;
-      rxbank_.reset(can::MessageId::CtrlCmd);
+      rxbank_.require_resync(can::MessageId::CtrlCmd);
       ++cmd_timeouts_;
       cmd_timeout_since_status_ = true;
       drain_cmd_ = mode_ == can::PlantMode::RealTime;
@@ -246,7 +265,7 @@ class Bridge {
     if (load_monitor_ && !load_timed_out_ && now - load_last_ns_ >= kLoadTimeout_ns) {
       load_ = can::on_rx_timeout(load_);
       load_timed_out_ = true;
-      rxbank_.reset(can::MessageId::HarnessLoad);
+      rxbank_.require_resync(can::MessageId::HarnessLoad);
       ++load_timeouts_;
       load_timeout_since_status_ = true;
       drain_load_ = mode_ == can::PlantMode::RealTime;
@@ -259,6 +278,10 @@ class Bridge {
       return;
     }
     check_deadlines(deadline_now());
+    // A Ramp reaction advances one frame before the frame uses it, so the
+    // first timed-out frame already moves by one rate step, never by more.
+    if (cmd_state_ == CmdState::TimedOut && cmd_reaction_ == CmdTimeoutReaction::Dbc)
+      cmd_ = can::rx_timeout_ramp(cmd_, static_cast<float>(static_cast<double>(plant_.frame_ns()) * 1e-9));
     if (plant_.step(current_inputs()) != RomFault::none) mode_ = can::PlantMode::Fault;
   }
 
@@ -451,6 +474,7 @@ class Bridge {
   can::TxChannel<can::PlantDiag> tx_diag_;
 
   can::PlantMode mode_ = can::PlantMode::Init;
+  CmdTimeoutReaction cmd_reaction_ = CmdTimeoutReaction::Dbc;
   CmdState cmd_state_ = CmdState::NoneYet;
   can::CtrlCmd cmd_{};
   can::HarnessLoad load_{};
