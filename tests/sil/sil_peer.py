@@ -12,7 +12,8 @@ tests/can/vcan_peer.py, not by the project's codec.
    CRC, an exact replay of the last Step, a protocol error frame): none is
    applied (sim time and command unchanged), the next status flags
    fault_rx_rejected and fault_bus_error, and PlantDiag.rejected_frames grows
-   by exactly 5.
+   by exactly 5; PlantBusDiag and PlantCmdDiag decode and report nothing
+   lost.
 
 usage: sil_peer.py IFNAME DBC
 """
@@ -28,6 +29,10 @@ import canmatrix.formats  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "can"))
 from vcan_peer import p01_crc  # noqa: E402
+
+
+# Sent together, in this order, just before PlantStatus (docs/can.md#layout).
+DIAG = ("PlantDiag", "PlantBusDiag", "PlantCmdDiag")
 
 
 class Peer:
@@ -115,7 +120,8 @@ class Peer:
             if last is not None and ctr != (last + 1) % 15:
                 self.fail("%s: counter %d after %d" % (fr.name, ctr, last))
             self.rx_counter[fr.name] = ctr
-            group[fr.name] = {k: (v.named_value if k == "plant_mode" else v.phys_value) for k, v in d.items()}
+            group[fr.name] = {k: (v.named_value if k in ("plant_mode", "bus_state") else v.phys_value)
+                              for k, v in d.items()}
             group.setdefault("_order", []).append(fr.name)
             if fr.name == "PlantStatus" and int(d["step_seq_ack"].raw_value) == ack:
                 return group
@@ -124,9 +130,12 @@ class Peer:
         if g is None:
             return
         st = g["PlantStatus"]
-        order = [n for n in g["_order"] if n != "PlantDiag"][-4:]
+        order = [n for n in g["_order"] if n not in DIAG][-4:]
         if order != ["PlantSpeeds", "PlantRatio", "PlantForces", "PlantStatus"]:
             self.fail("group order %s" % g["_order"])
+        diag = [n for n in g["_order"][-4:] if n in DIAG]
+        if diag and diag != list(DIAG):
+            self.fail("diagnostics %s, expected %s before PlantStatus" % (diag, list(DIAG)))
         tags = {int(g[n]["sample_tag"]) for n in ("PlantSpeeds", "PlantRatio", "PlantForces", "PlantStatus")}
         if len(tags) != 1:
             self.fail("sample tags differ: %s" % tags)
@@ -164,6 +173,8 @@ def main():
     if diag0 is None:
         p.fail("no PlantDiag at 500 ms")
         diag0 = 0
+    # The bridge's counters run over its lifetime: compare differences.
+    cmd0 = g.get("PlantCmdDiag", {}) if g else {}
 
     cmd_id = p.f["CtrlCmd"].arbitration_id.id
     nxt = p.tx_counter["CtrlCmd"]
@@ -203,6 +214,19 @@ def main():
         fax = float(g["PlantForces"]["driver_axial_force_N"])
         if not 5500 < fax < 6100:
             p.fail("axial force %.0f N: the valid 6000 N command was not applied" % fax)
+        # The other diagnostics, decoded by canmatrix: no command lost,
+        # re-synchronised or superseded (one per period); the bus error was
+        # a protocol error frame, which leaves the controller error-active.
+        bus, cmd = g.get("PlantBusDiag"), g.get("PlantCmdDiag")
+        if bus is None or cmd is None:
+            p.fail("PlantBusDiag/PlantCmdDiag missing at 600 ms")
+        else:
+            if str(bus["bus_state"]) != "ErrorActive" or int(bus["tx_dropped"]) != 0:
+                p.fail("PlantBusDiag %s" % bus)
+            grew = {k: (int(cmd[k]) - int(cmd0.get(k, 0))) % 65536
+                    for k in ("cmd_superseded", "cmd_lost_frames", "cmd_resyncs")}
+            if any(grew.values()):
+                p.fail("PlantCmdDiag grew by %s" % grew)
     p.bus.shutdown()
     print("sil_peer: 61 lock-step groups checked, 6 bad frames sent, %d failures" % len(p.fails))
     return 1 if p.fails else 0

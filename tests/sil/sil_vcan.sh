@@ -7,7 +7,9 @@
 #    an undersized clamp (--safety 0.8) must be caught as gross slip;
 #    the python3-can/canmatrix peer (sil_peer.py) on the same bridge; the
 #    bridge's JSON summary must show every rejection reason counted;
-#    candump's capture must equal the bridge's own log (check_sil_log.py).
+#    candump's capture must equal the bridge's own log (check_sil_log.py);
+#    a receive-queue overflow provoked with SIGSTOP + cangen must show up in
+#    PlantBusDiag and PlantStatus.
 # 2. Determinism: two fresh bridges, same scenario, byte-identical logs.
 # 3. Real time: 2 s at 1 kHz with cvtplant-controller at 10 ms beside it;
 #    jitter and overruns reported, a lenient sanity check.
@@ -86,6 +88,31 @@ if missing:
 sys.exit(0 if ok else 1)
 PYEOF
 $PY "$SRC/tests/sil/check_sil_log.py" "$OUT/candump.log" "$OUT/bridge-sil.log" "$DBC" || fail "candump vs bridge log"
+
+# ---- 1b. receive-queue overflow, reported on the bus ------------------------
+# The bridge is stopped (SIGSTOP) while cangen floods the bus: its socket
+# queue overflows in the kernel. Once it runs again, PlantBusDiag must carry
+# the kernel's drop count (SO_RXQ_OVFL), equal to its JSON summary, and the
+# next PlantStatus fault_frames_dropped.
+start_bridge bridge-ovf
+$PY "$SRC/tests/sil/sil_bus_diag.py" "$IF" "$DBC" > "$OUT/ovf-before.json" || fail "bus diagnostics before the flood"
+kill -STOP "$bridge_pid"
+cangen "$IF" -g 0 -n ${CVT_SIL_FLOOD:-4000} -I 555 -L 8 -D 0011223344556677 || fail "cangen flood"
+kill -CONT "$bridge_pid"
+$PY "$SRC/tests/sil/sil_bus_diag.py" "$IF" "$DBC" > "$OUT/ovf-after.json" || fail "bus diagnostics after the flood"
+stop_bridge
+$PY - "$OUT/ovf-before.json" "$OUT/ovf-after.json" "$OUT/bridge-ovf.json" <<'PYEOF' || fail "overflow not reported on the bus"
+import json, sys
+before, after = (json.loads(open(p).read()) for p in sys.argv[1:3])
+s = json.load(open(sys.argv[3]))
+print("sil_vcan: receive-queue overflow: PlantBusDiag.rx_kernel_drops %d -> %d, JSON %d; fault_frames_dropped %s; "
+      "rejected_frames %d -> %d" % (before["rx_kernel_drops"], after["rx_kernel_drops"], s["bus"]["rx_kernel_drops"],
+                                    after["fault_frames_dropped"], before["rejected_frames"], after["rejected_frames"]))
+ok = (before["rx_kernel_drops"] == 0 and after["rx_kernel_drops"] > 0 and
+      after["rx_kernel_drops"] == s["bus"]["rx_kernel_drops"] % 65536 and after["fault_frames_dropped"] and
+      not before["fault_frames_dropped"] and after["bus_state"] == "ErrorActive")
+sys.exit(0 if ok else 1)
+PYEOF
 
 t3=$(date +%s.%N)
 # ---- 2. determinism ---------------------------------------------------------

@@ -58,6 +58,8 @@ struct Group {
   can::PlantStatus status;
   bool has_diag = false;
   can::PlantDiag diag;
+  can::PlantBusDiag bus_diag;
+  can::PlantCmdDiag cmd_diag;
 };
 
 // Reads one output group and decodes it with a fresh, independent decoder.
@@ -73,6 +75,15 @@ Group read_group(port::CanTransport& node) {
       case can::MessageId::PlantRatio: g.ratio = a.plant_ratio; break;
       case can::MessageId::PlantForces: g.forces = a.plant_forces; break;
       case can::MessageId::PlantDiag: g.has_diag = true; g.diag = a.plant_diag; break;
+      case can::MessageId::PlantBusDiag:
+        REQUIRE(g.has_diag);  // PlantDiag, PlantBusDiag, PlantCmdDiag, in this order
+        g.bus_diag = a.plant_bus_diag;
+        break;
+      case can::MessageId::PlantCmdDiag:
+        REQUIRE(g.frames.size() >= 2);
+        REQUIRE(g.frames[g.frames.size() - 2].id == can::PlantBusDiag::kId);
+        g.cmd_diag = a.plant_cmd_diag;
+        break;
       case can::MessageId::PlantStatus: g.status = a.plant_status; return g;
       default: FAIL("unexpected message from the bridge");
     }
@@ -90,6 +101,12 @@ struct Rig {
   explicit Rig(const char* scene = "tip-in") { REQUIRE(bridge.load_scene(*find_builtin_scene(scene))); }
   Group step(uint16_t n) {
     peer.request(can::SimRequest::Step, n);
+    bridge.service(0);
+    return read_group(bus.node(1));
+  }
+  // SimCtrl None: answered with the diagnostics, nothing executed.
+  Group query() {
+    peer.request(can::SimRequest::None);
     bridge.service(0);
     return read_group(bus.node(1));
   }
@@ -117,10 +134,14 @@ TEST_CASE("lock-step: a Step advances exactly step_count frames and answers one 
   CHECK(g.status.sim_time_us == 37000u);
   CHECK(g.status.sample_tag == 1);
 
-  g = rig.step(63);  // crosses 100 ms: PlantDiag before PlantStatus
+  g = rig.step(63);  // crosses 100 ms: the three diagnostics before PlantStatus
   CHECK(rig.bridge.plant().frames() == 100);
   CHECK(g.status.sim_time_us == 100000u);
   CHECK(g.has_diag);
+  REQUIRE(g.frames.size() == 7);
+  CHECK(g.frames[3].id == can::PlantDiag::kId);
+  CHECK(g.frames[4].id == can::PlantBusDiag::kId);
+  CHECK(g.frames[5].id == can::PlantCmdDiag::kId);
   CHECK(g.frames.back().id == can::PlantStatus::kId);
   CHECK(rig.bridge.steps_requested() == 100);
 }
@@ -279,6 +300,13 @@ TEST_CASE("command timeout, the consequence: hold-last lets the belt slip when t
 
 namespace {
 void fix_crc(can::CanFrame& f, uint16_t data_id) { f.data[0] = can::e2e_crc(data_id, f.data); }
+can::CanFrame data_frame_for_test(uint32_t id) {
+  can::CanFrame f;
+  f.id = id;
+  f.dlc = 8;
+  for (uint8_t i = 0; i < 8; ++i) f.data[i] = static_cast<uint8_t>(0x11 * i);
+  return f;
+}
 }  // namespace
 
 TEST_CASE("malformed frames: each kind rejected and counted, plant keeps running, command unchanged") {
@@ -352,11 +380,38 @@ TEST_CASE("malformed frames: each kind rejected and counted, plant keeps running
   f.flags = can::kFrameExtendedId;
   expect_rejected(f, &sil::RxCounts::not_data_frame, "extended ID");
 
+
   // None of the above moved the E2E reference: the frame they were built
   // from is still the next valid one.
   REQUIRE(n.send(good) == CanIoStatus::Ok);
   rig.step(1);
   CHECK(rig.bridge.command().clamp_force_cmd_N == 59000.0f);
+}
+
+TEST_CASE("the plant's own output IDs from another node are rejections; PlantDiag.rejected_frames sums every reason") {
+  Rig rig;
+  // An ID conflict: another node sends with the plant's output IDs.
+  for (const uint32_t id : {can::PlantSpeeds::kId, can::PlantStatus::kId, can::PlantCmdDiag::kId}) {
+    REQUIRE(rig.bus.node(1).send(data_frame_for_test(id)) == CanIoStatus::Ok);
+    const Group g = rig.step(1);
+    CHECK(g.status.fault_rx_rejected);
+  }
+  CHECK(rig.bridge.rx().plant_ids_ignored == 3);
+  // One of each other kind, plus an error frame, which is not a rejection.
+  can::CanFrame f = data_frame_for_test(0x555);
+  REQUIRE(rig.bus.node(1).send(f) == CanIoStatus::Ok);
+  f = rig.peer.cmd_frame(5000.0f, 10.0f);
+  f.dlc = 6;
+  REQUIRE(rig.bus.node(1).send(f) == CanIoStatus::Ok);
+  rig.bus.inject_error(0, port::can_err::kProtocol);
+  const Group g = rig.step(100);
+  REQUIRE(g.has_diag);
+  CHECK(rig.bridge.rx().rejected() == 5);
+  CHECK(rig.bridge.rx().error_frames == 1);
+  CHECK(g.diag.rejected_frames == 5);
+  CHECK(g.status.fault_rx_rejected);
+  CHECK(g.status.fault_bus_error);
+  CHECK_FALSE(rig.step(1).status.fault_rx_rejected);
 }
 
 TEST_CASE("error frames and bus-off are reported, never decoded; sends refused while bus-off") {
@@ -400,6 +455,76 @@ TEST_CASE("ENOBUFS: bounded retries still deliver, beyond the bound the frame is
   g = read_group(rig.bus.node(1));
   CHECK(g.frames.size() == 3);  // PlantSpeeds was the dropped one
   CHECK(g.frames[0].id == can::PlantRatio::kId);
+}
+
+TEST_CASE("receive-queue overflow and ENOBUFS are reported on the bus: PlantBusDiag and fault_frames_dropped") {
+  Rig rig;  // the bridge's receive ring holds 64 frames
+  rig.step(1);
+  for (int i = 0; i < 100; ++i) REQUIRE(rig.bus.node(1).send(data_frame_for_test(0x555)) == CanIoStatus::Ok);
+  rig.bridge.service(0);  // the 64 that fit: read and rejected
+  CHECK(rig.bridge.rx().unknown_id == 64);
+  Group g = rig.step(99);  // to 100 ms: the diagnostics are due
+  REQUIRE(g.has_diag);
+  CHECK(g.bus_diag.rx_kernel_drops == 36);
+  CHECK(g.bus_diag.bus_state == can::BusState::ErrorActive);
+  CHECK(g.status.fault_frames_dropped);
+  g = rig.step(1);
+  CHECK_FALSE(g.status.fault_frames_dropped);  // cleared once a status carried it
+
+  rig.bus.node(0).fail_next_tx_attempts(Bus::kTxRetryBound);  // retried, delivered
+  rig.step(1);
+  rig.bus.node(0).fail_next_tx_attempts(Bus::kTxRetryBound + 1);  // PlantSpeeds given up
+  rig.peer.request(can::SimRequest::Step, 1);
+  rig.bridge.service(0);
+  g = read_group(rig.bus.node(1));
+  CHECK(g.status.fault_frames_dropped);
+  g = rig.step(97);  // to 200 ms
+  REQUIRE(g.has_diag);
+  CHECK(g.bus_diag.tx_enobufs_retries == 2 * Bus::kTxRetryBound);
+  CHECK(g.bus_diag.tx_dropped == 1);
+  CHECK(g.bus_diag.rx_kernel_drops == 36);
+  CHECK_FALSE(g.status.fault_frames_dropped);
+
+  // The bus state of the plant's controller, e.g. error warning.
+  rig.bus.inject_error(0, port::can_err::kController, port::can_err::kCtrlTxWarning);
+  g = rig.step(100);
+  REQUIRE(g.has_diag);
+  CHECK(g.bus_diag.bus_state == can::BusState::ErrorWarning);
+  CHECK(g.status.fault_bus_error);
+}
+
+TEST_CASE("two lost commands: the E2E receiver re-synchronises before the deadline, reported in PlantCmdDiag") {
+  // A controller at 10 ms, commands 1 kN apart; two frames lost on the wire.
+  Rig rig;
+  for (int k = 0; k < 20; ++k) {
+    const can::CanFrame f = rig.peer.cmd_frame(1000.0f * static_cast<float>(k % 10 + 1), 30.0f);
+    const bool lost = k == 8 || k == 9;
+    if (!lost) REQUIRE(rig.bus.node(1).send(f) == CanIoStatus::Ok);
+    const Group g = rig.step(10);
+    CAPTURE(k);
+    CHECK_FALSE(g.status.fault_cmd_timeout);
+    if (k == 10) CHECK(rig.bridge.rx().wrong_sequence == 1);  // the jump: new reference, not used
+    if (k == 11) CHECK(rig.bridge.rx().resync_withheld == 1);  // one Sync frame, not used
+    // What the plant applies: the last command used; 8..11 keep command 7.
+    const float expect = k >= 8 && k <= 11 ? 8000.0f : 1000.0f * static_cast<float>(k % 10 + 1);
+    CHECK(rig.bridge.command().clamp_force_cmd_N == expect);
+  }
+  CHECK(rig.bridge.cmd_timeouts() == 0);
+  const Group g = rig.query();
+  REQUIRE(g.has_diag);
+  CHECK(g.cmd_diag.cmd_lost_frames == 2);
+  CHECK(g.cmd_diag.cmd_resyncs == 1);
+  CHECK(g.cmd_diag.cmd_superseded == 0);
+
+  // Three lost: the deadline comes first (docs/can.md#e2e-checker).
+  Rig three;
+  for (int k = 0; k < 20; ++k) {
+    const can::CanFrame f = three.peer.cmd_frame(5000.0f, 30.0f);
+    if (k < 8 || k > 10) REQUIRE(three.bus.node(1).send(f) == CanIoStatus::Ok);
+    three.step(10);
+  }
+  CHECK(three.bridge.cmd_timeouts() == 1);
+  CHECK(three.bridge.cmd_state() == Bridge::CmdState::Valid);
 }
 
 TEST_CASE("a repeated frame (same counter, valid CRC, new value) is never applied") {
@@ -545,16 +670,20 @@ TEST_CASE("real time: cyclic frames follow the DBC cycle times") {
     rig.bridge.realtime_frame();
     rig.clock.advance(1000000);
   }
-  int speeds = 0, status = 0, diag = 0;
+  int speeds = 0, status = 0, diag = 0, bus_diag = 0, cmd_diag = 0;
   can::CanFrame f;
   while (rig.bus.node(1).receive(f, 0) == CanIoStatus::Ok) {
     speeds += f.id == can::PlantSpeeds::kId;
     status += f.id == can::PlantStatus::kId;
     diag += f.id == can::PlantDiag::kId;
+    bus_diag += f.id == can::PlantBusDiag::kId;
+    cmd_diag += f.id == can::PlantCmdDiag::kId;
   }
   CHECK(speeds == 100 / can::PlantSpeeds::kCycleTime_ms);
   CHECK(status == 100 / can::PlantStatus::kCycleTime_ms);
   CHECK(diag == 100 / can::PlantDiag::kCycleTime_ms);
+  CHECK(bus_diag == 100 / can::PlantBusDiag::kCycleTime_ms);
+  CHECK(cmd_diag == 100 / can::PlantCmdDiag::kCycleTime_ms);
   CHECK(rig.bridge.cmd_timeouts() == 0);
 }
 

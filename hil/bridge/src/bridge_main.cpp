@@ -172,6 +172,8 @@ void print_summary(std::FILE* out, const Options& o, const cvt::sil::Bridge& b,
                u(tc.tx_dropped));
   std::fprintf(out, "  \"bus\": {\"bus_off_events\": %llu, \"rx_kernel_drops\": %llu, \"rx_invalid\": %llu},\n",
                u(tc.bus_off_events), u(tc.rx_kernel_drops), u(tc.rx_invalid));
+  std::fprintf(out, "  \"cmd\": {\"lost_frames\": %llu, \"resyncs\": %llu, \"superseded\": %llu},\n",
+               u(b.cmd_checker().lost_frames()), u(b.cmd_checker().resyncs()), u(rx.cmd_superseded));
   std::fprintf(out, "  \"cmd_timeouts\": %llu,\n  \"load_timeouts\": %llu,\n  \"cmd_timeout_reaction\": \"%s\",\n",
                u(b.cmd_timeouts()), u(b.load_timeouts()), cvt::sil::to_string(b.cmd_timeout_reaction()));
   std::fprintf(out, "  \"realtime\": ");

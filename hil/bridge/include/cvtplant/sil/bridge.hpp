@@ -20,6 +20,13 @@
 
 namespace cvt::sil {
 
+// PlantBusDiag.bus_state carries port::CanBusState's value.
+static_assert(static_cast<int>(can::BusState::ErrorActive) == static_cast<int>(port::CanBusState::ErrorActive) &&
+                  static_cast<int>(can::BusState::ErrorWarning) == static_cast<int>(port::CanBusState::ErrorWarning) &&
+                  static_cast<int>(can::BusState::ErrorPassive) == static_cast<int>(port::CanBusState::ErrorPassive) &&
+                  static_cast<int>(can::BusState::BusOff) == static_cast<int>(port::CanBusState::BusOff),
+              "DBC bus_state values must match port::CanBusState");
+
 // Receives every frame the bridge put on the bus (the candump log).
 class FrameSink {
  public:
@@ -45,11 +52,15 @@ struct RxCounts {
   std::uint64_t invalid_enum = 0;
   std::uint64_t error_frames = 0;    // reported, never decoded (docs/sil.md#robustness)
   std::uint64_t stale_discarded = 0; // drained after a command timeout (docs/can.md#timeouts)
-  std::uint64_t plant_ids_ignored = 0;  // valid plant-output IDs sent by another node
+  std::uint64_t plant_ids_ignored = 0;  // the plant's own output IDs sent by another node
   std::uint64_t requests_ignored = 0;   // e.g. Step while running in real time
+  std::uint64_t cmd_superseded = 0;     // valid CtrlCmd replaced before any frame used it
+  // PlantDiag.rejected_frames: every refused data frame. Not error frames
+  // (fault_bus_error), not re-synchronisation, not stale drains, not ignored
+  // requests (docs/sil.md#robustness).
   std::uint64_t rejected() const noexcept {
     return not_data_frame + unknown_id + wrong_dlc + wrong_crc + repeated + wrong_sequence + out_of_range +
-           invalid_enum;
+           invalid_enum + plant_ids_ignored;
   }
 };
 
@@ -197,6 +208,7 @@ class Bridge {
   const RxCounts& rx() const noexcept { return rx_; }
   const TxCounts& tx() const noexcept { return tx_; }
   std::uint64_t cmd_timeouts() const noexcept { return cmd_timeouts_; }
+  const can::E2eChecker& cmd_checker() const noexcept { return rxbank_.checker(can::MessageId::CtrlCmd); }
   std::uint64_t load_timeouts() const noexcept { return load_timeouts_; }
   std::uint64_t rt_overruns() const noexcept { return rt_overruns_; }
   std::uint64_t steps_requested() const noexcept { return steps_requested_; }
@@ -217,6 +229,7 @@ class Bridge {
     cmd_monitor_ = load_monitor_ = false;
     load_timed_out_ = false;
     drain_cmd_ = drain_load_ = false;
+    cmd_unused_ = false;
     // A new run may restart its counters at 0 (docs/sil.md#lock-step).
     rxbank_.reset(can::MessageId::CtrlCmd);
     rxbank_.reset(can::MessageId::HarnessLoad);
@@ -282,6 +295,7 @@ class Bridge {
     // first timed-out frame already moves by one rate step, never by more.
     if (cmd_state_ == CmdState::TimedOut && cmd_reaction_ == CmdTimeoutReaction::Dbc)
       cmd_ = can::rx_timeout_ramp(cmd_, static_cast<float>(static_cast<double>(plant_.frame_ns()) * 1e-9));
+    cmd_unused_ = false;
     if (plant_.step(current_inputs()) != RomFault::none) mode_ = can::PlantMode::Fault;
   }
 
@@ -305,7 +319,8 @@ class Bridge {
 
   static bool is_plant_output(std::uint32_t id) {
     return id == can::PlantSpeeds::kId || id == can::PlantRatio::kId || id == can::PlantForces::kId ||
-           id == can::PlantStatus::kId || id == can::PlantDiag::kId;
+           id == can::PlantStatus::kId || id == can::PlantDiag::kId || id == can::PlantBusDiag::kId ||
+           id == can::PlantCmdDiag::kId;
   }
 
   void handle_io(port::CanIoStatus st, const can::CanFrame& f, bool draining) {
@@ -317,7 +332,9 @@ class Bridge {
     }
     if (st != port::CanIoStatus::Ok) return;
     if (can::is_standard_data_frame(f) && is_plant_output(f.id)) {
+      // Another node sends with the plant's IDs: an ID conflict on the bus.
       ++rx_.plant_ids_ignored;
+      rejected_since_status_ = true;
       return;
     }
     // Frames queued while a command timed out are stale by definition: the
@@ -336,6 +353,8 @@ class Bridge {
     switch (any_.which) {
       case can::MessageId::SimCtrl: handle_sim_ctrl(any_.sim_ctrl); break;
       case can::MessageId::CtrlCmd:
+        if (cmd_unused_) ++rx_.cmd_superseded;
+        cmd_unused_ = true;
         cmd_ = any_.ctrl_cmd;
         cmd_state_ = CmdState::Valid;
         cmd_monitor_ = true;
@@ -386,7 +405,7 @@ class Bridge {
         if (mode_ != can::PlantMode::Fault) enter_mode(can::PlantMode::Ready);
         send_group(m.step_seq, true);
         break;
-      case can::SimRequest::None: send_group(m.step_seq, false); break;
+      case can::SimRequest::None: send_group(m.step_seq, true); break;
     }
   }
 
@@ -413,7 +432,8 @@ class Bridge {
     return false;
   }
 
-  // docs/can.md#layout "Output groups": Speeds, Ratio, Forces, [Diag,] Status.
+  // docs/can.md#layout "Output groups": Speeds, Ratio, Forces, [Diag,
+  // BusDiag, CmdDiag,] Status.
   // In real time the 100 ms frames (Diag, Status) go out only on every
   // tenth 10 ms group, as the DBC cycle times say; there step_seq_ack is 0
   // because no request is being acknowledged.
@@ -430,12 +450,25 @@ class Bridge {
     can::PlantForces fo{tag, f(o.clamp_force_N), f(o.clamp_force_N)};
     send(fo, tx_forces_);
     if (with_diag) {
+      // Counters wrap modulo 2^16 by design (docs/can.md#layout).
       can::PlantDiag d;
-      // Wrap modulo 2^16 by design (docs/can.md#layout).
       d.rejected_frames = static_cast<std::uint16_t>(rx_.rejected());
       d.cmd_timeouts = static_cast<std::uint16_t>(cmd_timeouts_);
       d.rt_overruns = static_cast<std::uint16_t>(rt_overruns_);
       send(d, tx_diag_);
+      const port::CanTransportCounters c = bus_.counters();
+      can::PlantBusDiag b;
+      b.bus_state = static_cast<can::BusState>(bus_.bus_state());
+      b.rx_kernel_drops = static_cast<std::uint16_t>(c.rx_kernel_drops);
+      b.tx_enobufs_retries = static_cast<std::uint16_t>(c.tx_enobufs_retries);
+      b.tx_dropped = static_cast<std::uint16_t>(c.tx_dropped);
+      send(b, tx_bus_diag_);
+      const can::E2eChecker& ck = rxbank_.checker(can::MessageId::CtrlCmd);
+      can::PlantCmdDiag cd;
+      cd.cmd_lost_frames = static_cast<std::uint16_t>(ck.lost_frames());
+      cd.cmd_resyncs = static_cast<std::uint16_t>(ck.resyncs());
+      cd.cmd_superseded = static_cast<std::uint16_t>(rx_.cmd_superseded);
+      send(cd, tx_cmd_diag_);
     }
     if (!with_status) {
       ++groups_sent_;
@@ -451,12 +484,16 @@ class Bridge {
     s.fault_bus_error = bus_error_since_status_ || bus_.bus_state() != port::CanBusState::ErrorActive;
     s.fault_scene = fault_scene_;
     s.fault_rx_rejected = rejected_since_status_;
+    const port::CanTransportCounters tc = bus_.counters();
+    const std::uint64_t dropped = tc.rx_kernel_drops + tc.tx_dropped;
+    s.fault_frames_dropped = dropped != dropped_at_status_;
     s.step_seq_ack = static_cast<std::uint8_t>(step_seq & 0x0Fu);
     s.sample_tag = tag;
     // Event flags are cleared only once a status carrying them is on the bus.
     if (send(s, tx_status_)) {
       cmd_timeout_since_status_ = load_timeout_since_status_ = overrun_since_status_ = false;
       bus_error_since_status_ = rejected_since_status_ = false;
+      dropped_at_status_ = dropped;
     }
     ++groups_sent_;
   }
@@ -472,6 +509,8 @@ class Bridge {
   can::TxChannel<can::PlantForces> tx_forces_;
   can::TxChannel<can::PlantStatus> tx_status_;
   can::TxChannel<can::PlantDiag> tx_diag_;
+  can::TxChannel<can::PlantBusDiag> tx_bus_diag_;
+  can::TxChannel<can::PlantCmdDiag> tx_cmd_diag_;
 
   can::PlantMode mode_ = can::PlantMode::Init;
   CmdTimeoutReaction cmd_reaction_ = CmdTimeoutReaction::Dbc;
@@ -480,6 +519,8 @@ class Bridge {
   can::HarnessLoad load_{};
   bool cmd_monitor_ = false, load_monitor_ = false, load_timed_out_ = false;
   bool drain_cmd_ = false, drain_load_ = false;
+  bool cmd_unused_ = false;  // a used CtrlCmd no plant frame has applied yet
+  std::uint64_t dropped_at_status_ = 0;
   std::int64_t cmd_last_ns_ = 0, load_last_ns_ = 0;
   long fast_cycle_frames_ = 10, slow_cycle_frames_ = 100;
 
