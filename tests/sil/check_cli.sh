@@ -29,6 +29,7 @@ expect 2 "$SIL"
 expect 2 "$SIL" fly
 expect 2 "$SIL" run --scenario nope
 expect 2 "$SIL" run --safety x
+expect 2 "$SIL" run --reply-timeout-ms 0
 expect 2 "$SIL" bench --steps 0
 expect 1 "$SIL" run --iface nosuchcan0
 # An output directory that cannot be made is an error, not missing traces.

@@ -37,6 +37,7 @@ struct Peer {
     return f;
   }
   void send_cmd(float clamp_N, float torque_Nm) { REQUIRE(node.send(cmd_frame(clamp_N, torque_Nm)) == CanIoStatus::Ok); }
+  can::SimCtrl last_request;
   void request(can::SimRequest r, uint16_t steps = 0, can::SceneId scene = can::SceneId::Keep) {
     can::SimCtrl m;
     m.sim_request = r;
@@ -44,8 +45,14 @@ struct Peer {
     m.scene_id = scene;
     m.step_seq = seq;
     seq = static_cast<uint8_t>((seq + 1) & 0x0F);
+    last_request = m;
+    resend();
+  }
+  // The same request again (same step_seq, next E2E counter): what a
+  // harness does when no complete answer came (docs/sil.md#lost-frames).
+  void resend() {
     can::CanFrame f;
-    REQUIRE(sim.encode(m, f) == can::CodecStatus::Ok);
+    REQUIRE(sim.encode(last_request, f) == can::CodecStatus::Ok);
     REQUIRE(node.send(f) == CanIoStatus::Ok);
   }
 };
@@ -96,7 +103,7 @@ struct Rig {
   port::VirtualClock clock;
   Bus bus{&clock};
   Bridge bridge{bus.node(0), clock};
-  Peer peer{bus.node(1), {}, {}, {}};
+  Peer peer{bus.node(1), {}, {}, {}, 0, {}};
 
   explicit Rig(const char* scene = "tip-in") { REQUIRE(bridge.load_scene(*find_builtin_scene(scene))); }
   Group step(uint16_t n) {
@@ -525,6 +532,114 @@ TEST_CASE("two lost commands: the E2E receiver re-synchronises before the deadli
   }
   CHECK(three.bridge.cmd_timeouts() == 1);
   CHECK(three.bridge.cmd_state() == Bridge::CmdState::Valid);
+}
+
+namespace {
+// Drops the next frame with `id` sent by node `from` (a frame lost on the wire).
+struct DropNext {
+  size_t from;
+  uint32_t id;
+  int left = 1;
+  static bool filter(void* ctx, size_t from, const can::CanFrame& f) {
+    auto* d = static_cast<DropNext*>(ctx);
+    if (d->left == 0 || from != d->from || f.id != d->id) return false;
+    --d->left;
+    return true;
+  }
+};
+
+// Reads whatever the bridge answered, possibly nothing.
+std::vector<can::CanFrame> drain(port::CanTransport& node) {
+  std::vector<can::CanFrame> v;
+  can::CanFrame f;
+  while (node.receive(f, 0) == CanIoStatus::Ok) v.push_back(f);
+  return v;
+}
+}  // namespace
+
+TEST_CASE("lock-step, lost Step request: the resend executes it exactly once") {
+  Rig rig;
+  rig.step(10);
+  DropNext drop{1, can::SimCtrl::kId};
+  rig.bus.set_drop_filter(&DropNext::filter, &drop);
+  const uint8_t seq = rig.peer.seq;
+  rig.peer.request(can::SimRequest::Step, 10);
+  rig.bridge.service(0);
+  CHECK(drain(rig.bus.node(1)).empty());  // no answer: the harness times out
+  CHECK(rig.bridge.plant().frames() == 10);
+  rig.peer.resend();
+  rig.bridge.service(0);
+  const Group g = read_group(rig.bus.node(1));
+  CHECK(rig.bridge.plant().frames() == 20);
+  CHECK(g.status.sim_time_us == 20000u);
+  CHECK(g.status.step_seq_ack == seq);
+  CHECK(rig.bridge.rx().requests_resent == 0);  // the bridge never saw the first
+}
+
+TEST_CASE("lock-step, lost reply: the resend is answered with the same group, not stepped again") {
+  for (const uint32_t lost : {can::PlantStatus::kId, can::PlantSpeeds::kId}) {
+    CAPTURE(lost);
+    Rig rig;
+    rig.step(10);
+    DropNext drop{0, lost};
+    rig.bus.set_drop_filter(&DropNext::filter, &drop);
+    const uint8_t seq = rig.peer.seq;
+    rig.peer.request(can::SimRequest::Step, 10);
+    rig.bridge.service(0);
+    const std::vector<can::CanFrame> partial = drain(rig.bus.node(1));
+    CHECK(partial.size() == 3);  // the group without the lost frame
+    CHECK(rig.bridge.plant().frames() == 20);
+    rig.peer.resend();
+    rig.bridge.service(0);
+    const Group g = read_group(rig.bus.node(1));
+    CHECK(rig.bridge.plant().frames() == 20);  // not executed twice
+    CHECK(g.status.sim_time_us == 20000u);
+    CHECK(g.status.step_seq_ack == seq);
+    CHECK(g.frames.size() == 4);
+    // Same sample: the sample_tag of the group the harness partly missed.
+    CHECK(g.status.sample_tag == (partial[0].data[1] >> 4));  // sample_tag: bits 12..15
+    CHECK(g.speeds.sample_tag == g.status.sample_tag);
+    CHECK(rig.bridge.rx().requests_resent == 1);
+    CHECK(rig.bridge.groups_resent() == 1);
+    // The next request is a new one again.
+    const Group next = rig.step(10);
+    CHECK(next.status.sim_time_us == 30000u);
+    CHECK(next.status.sample_tag == static_cast<uint8_t>((g.status.sample_tag + 1) & 0x0F));
+  }
+}
+
+TEST_CASE("a controller flooding the bus beyond the bridge's receive queue: drops reported, Step resent, commands re-synchronise") {
+  Rig rig;  // the bridge's receive ring holds 64 frames
+  rig.peer.send_cmd(3000.0f, 30.0f);
+  rig.step(10);
+  // 100 valid commands with advancing counters in one period, then the Step.
+  for (int i = 0; i < 100; ++i) rig.peer.send_cmd(3000.0f + static_cast<float>(i), 30.0f);
+  rig.peer.request(can::SimRequest::Step, 10);  // lost: the queue is full
+  rig.bridge.service(0);
+  CHECK(drain(rig.bus.node(1)).empty());
+  CHECK(rig.bridge.plant().frames() == 10);
+  // Of the 64 that fit, the last one is applied; 63 were superseded.
+  CHECK(rig.bridge.command().clamp_force_cmd_N == 3063.0f);
+  CHECK(rig.bridge.rx().cmd_superseded == 63);
+  rig.peer.resend();  // the harness's reply timeout
+  rig.bridge.service(0);
+  Group g = read_group(rig.bus.node(1));
+  CHECK(g.status.sim_time_us == 20000u);
+  CHECK(g.status.fault_frames_dropped);
+  CHECK(rig.bridge.rx().cmd_superseded == 63);  // the frame that stepped used the last one
+  // Back to one command per period: the first jumps over the 36 dropped
+  // counters (new reference), one Sync, then used, inside the deadline.
+  for (int k = 0; k < 4; ++k) {
+    rig.peer.send_cmd(4000.0f, 30.0f);
+    g = rig.step(10);
+    CHECK_FALSE(g.status.fault_cmd_timeout);
+  }
+  CHECK(rig.bridge.command().clamp_force_cmd_N == 4000.0f);
+  g = rig.query();
+  CHECK(g.bus_diag.rx_kernel_drops == 37);  // 36 commands and the Step
+  CHECK(g.cmd_diag.cmd_superseded == 63);
+  CHECK(g.cmd_diag.cmd_resyncs == 1);
+  CHECK(rig.bridge.cmd_timeouts() == 0);
 }
 
 TEST_CASE("a repeated frame (same counter, valid CRC, new value) is never applied") {

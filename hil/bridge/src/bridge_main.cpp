@@ -152,19 +152,23 @@ void print_summary(std::FILE* out, const Options& o, const cvt::sil::Bridge& b,
   std::fprintf(out, "{\n  \"scene\": \"%s\",\n  \"iface\": \"%s\",\n", s ? s->name : "", o.iface.c_str());
   std::fprintf(out, "  \"final_mode\": \"%s\",\n  \"plant_fault\": \"%s\",\n", cvt::can::to_string(b.mode()),
                cvt::rom_fault_name(b.plant().fault()));
-  std::fprintf(out, "  \"frames\": %ld,\n  \"sim_time_s\": %.6f,\n  \"steps_requested\": %llu,\n  \"groups_sent\": %llu,\n",
+  std::fprintf(out,
+               "  \"frames\": %ld,\n  \"sim_time_s\": %.6f,\n  \"steps_requested\": %llu,\n  \"groups_sent\": %llu,\n"
+               "  \"groups_resent\": %llu,\n",
                b.plant().frames(), static_cast<double>(b.sim_ns()) * 1e-9,
-               static_cast<unsigned long long>(b.steps_requested()), static_cast<unsigned long long>(b.groups_sent()));
+               static_cast<unsigned long long>(b.steps_requested()), static_cast<unsigned long long>(b.groups_sent()),
+               static_cast<unsigned long long>(b.groups_resent()));
   auto u = [](std::uint64_t v) { return static_cast<unsigned long long>(v); };
   std::fprintf(out,
                "  \"rx\": {\"accepted\": %llu, \"rejected\": %llu, \"not_data_frame\": %llu, \"unknown_id\": %llu, "
                "\"wrong_dlc\": %llu, \"wrong_crc\": %llu, \"repeated\": %llu, \"wrong_sequence\": %llu, "
                "\"out_of_range\": %llu, \"invalid_enum\": %llu, \"error_frames\": %llu, \"stale_discarded\": %llu, "
-               "\"plant_ids_ignored\": %llu, \"requests_ignored\": %llu, \"resync_withheld\": %llu},\n",
+               "\"plant_ids_ignored\": %llu, \"requests_ignored\": %llu, \"resync_withheld\": %llu, "
+               "\"requests_resent\": %llu},\n",
                u(rx.accepted), u(rx.rejected()), u(rx.not_data_frame), u(rx.unknown_id), u(rx.wrong_dlc),
                u(rx.wrong_crc), u(rx.repeated), u(rx.wrong_sequence), u(rx.out_of_range), u(rx.invalid_enum),
                u(rx.error_frames), u(rx.stale_discarded), u(rx.plant_ids_ignored), u(rx.requests_ignored),
-               u(rx.resync_withheld));
+               u(rx.resync_withheld), u(rx.requests_resent));
   std::fprintf(out,
                "  \"tx\": {\"sent\": %llu, \"failed\": %llu, \"bus_off_refused\": %llu, \"saturated\": %llu, "
                "\"enobufs_retries\": %llu, \"dropped\": %llu},\n",

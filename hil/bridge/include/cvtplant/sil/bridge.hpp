@@ -55,6 +55,7 @@ struct RxCounts {
   std::uint64_t plant_ids_ignored = 0;  // the plant's own output IDs sent by another node
   std::uint64_t requests_ignored = 0;   // e.g. Step while running in real time
   std::uint64_t cmd_superseded = 0;     // valid CtrlCmd replaced before any frame used it
+  std::uint64_t requests_resent = 0;    // SimCtrl repeating the last step_seq: answered again, not executed
   // PlantDiag.rejected_frames: every refused data frame. Not error frames
   // (fault_bus_error), not re-synchronisation, not stale drains, not ignored
   // requests (docs/sil.md#robustness).
@@ -213,6 +214,7 @@ class Bridge {
   std::uint64_t rt_overruns() const noexcept { return rt_overruns_; }
   std::uint64_t steps_requested() const noexcept { return steps_requested_; }
   std::uint64_t groups_sent() const noexcept { return groups_sent_; }
+  std::uint64_t groups_resent() const noexcept { return groups_resent_; }
   bool fault_scene() const noexcept { return fault_scene_; }
   std::int64_t frame_ns() const noexcept { return plant_.frame_ns(); }
 
@@ -370,7 +372,22 @@ class Bridge {
     }
   }
 
+  // docs/sil.md#lost-frames: a request that repeats the step_seq of the
+  // last executed one is the harness's resend after a lost reply (or a
+  // request it could not tell was lost): answer it again, execute nothing.
   void handle_sim_ctrl(const can::SimCtrl& m) {
+    if (have_last_seq_ && m.step_seq == last_seq_) {
+      ++rx_.requests_resent;
+      if (m.sim_request != can::SimRequest::RunRealTime && mode_ != can::PlantMode::RealTime)
+        send_group(m.step_seq, last_group_diag_, true, true);
+      return;
+    }
+    if (m.sim_request == can::SimRequest::Step && (mode_ == can::PlantMode::RealTime || !plant_.loaded())) {
+      ++rx_.requests_ignored;
+      return;
+    }
+    have_last_seq_ = true;
+    last_seq_ = m.step_seq;
     switch (m.sim_request) {
       case can::SimRequest::Reset: {
         const Scene* s = m.scene_id == can::SceneId::Keep ? plant_.scene() : builtin_scene_for(m.scene_id);
@@ -384,10 +401,6 @@ class Bridge {
         break;
       }
       case can::SimRequest::Step:
-        if (mode_ == can::PlantMode::RealTime || !plant_.loaded()) {
-          ++rx_.requests_ignored;
-          break;
-        }
         if (mode_ != can::PlantMode::Fault) enter_mode(can::PlantMode::LockStep);
         steps_requested_ += m.step_count;
         {
@@ -437,9 +450,17 @@ class Bridge {
   // In real time the 100 ms frames (Diag, Status) go out only on every
   // tenth 10 ms group, as the DBC cycle times say; there step_seq_ack is 0
   // because no request is being acknowledged.
-  void send_group(std::uint8_t step_seq, bool with_diag, bool with_status = true) {
+  // A resent group repeats the last group's sample_tag: same sample, the
+  // receivers can tell it from a new one.
+  void send_group(std::uint8_t step_seq, bool with_diag, bool with_status = true, bool resend = false) {
     const RomOutputs<double> o = plant_.loaded() ? plant_.outputs() : RomOutputs<double>{};
-    const auto tag = static_cast<std::uint8_t>(groups_sent_ & 0x0Fu);
+    const auto tag = resend ? last_group_tag_ : static_cast<std::uint8_t>(groups_sent_ & 0x0Fu);
+    if (resend) {
+      ++groups_resent_;
+    } else {
+      last_group_tag_ = tag;
+      last_group_diag_ = with_diag;
+    }
     auto f = [](double v) { return static_cast<float>(v); };
     can::PlantSpeeds sp{tag, f(o.omega1_rad_s), f(o.omega2_rad_s), f(o.torque_transmitted_Nm)};
     send(sp, tx_speeds_);
@@ -471,7 +492,7 @@ class Bridge {
       send(cd, tx_cmd_diag_);
     }
     if (!with_status) {
-      ++groups_sent_;
+      if (!resend) ++groups_sent_;
       return;
     }
     can::PlantStatus s;
@@ -495,7 +516,7 @@ class Bridge {
       bus_error_since_status_ = rejected_since_status_ = false;
       dropped_at_status_ = dropped;
     }
-    ++groups_sent_;
+    if (!resend) ++groups_sent_;
   }
 
   port::CanTransport& bus_;
@@ -531,7 +552,9 @@ class Bridge {
   RxCounts rx_{};
   TxCounts tx_{};
   std::uint64_t cmd_timeouts_ = 0, load_timeouts_ = 0, rt_overruns_ = 0;
-  std::uint64_t steps_requested_ = 0, groups_sent_ = 0;
+  std::uint64_t steps_requested_ = 0, groups_sent_ = 0, groups_resent_ = 0;
+  bool have_last_seq_ = false, last_group_diag_ = false;
+  std::uint8_t last_seq_ = 0, last_group_tag_ = 0;
 };
 
 // The real-time pacing loop (docs/sil.md#real-time): absolute deadlines;
