@@ -50,4 +50,24 @@ print("sil-bench: real time 1 kHz (%s): %d periods, %d overruns, SCHED_FIFO gran
          j["p50"] / 1e3, j["p99"] / 1e3, j["p99_9"] / 1e3, j["max"] / 1e3, s["rx"]["accepted"], s["cmd_timeouts"]))
 PYEOF
 done
+# The example controller's schedule (docs/sil.md#controller-schedule): the
+# bridge in real time for RT_S + 2 s, the controller for RT_S s inside it,
+# once on its own fixed 10 ms clock and once following the plant's groups;
+# LOAD busy loops (default 0) compete for the CPUs.
+hogs=()
+for _ in $(seq 1 "${LOAD:-0}"); do (while :; do :; done) & hogs+=($!); done
+for sched in fixed group; do
+  "$BRIDGE" --iface "$IF" --mode realtime --duration-s $((RT_S + 2)) --sched-fifo 80 \
+    --summary "$OUT/bench-schedule-bridge-$sched.json" &
+  pid=$!
+  sleep 1
+  "$BUILD/hil/controller/cvtplant-controller" --iface "$IF" --demand-Nm 80 --duration-s "$RT_S" --schedule $sched \
+    > "$OUT/bench-schedule-$sched.json" || rc=1
+  wait $pid || rc=1
+  /usr/bin/python3 -c 'import json, sys; c = json.load(open(sys.argv[1]))
+print("sil-bench: controller schedule %s (load %s): %d of %d steps with fresh plant data (%.3f), longest gap %.1f ms"
+      % (c["schedule"], sys.argv[2], c["fresh_periods"], c["periods"], c["fresh_fraction"], c["max_step_gap_ms"]))' \
+    "$OUT/bench-schedule-$sched.json" "${LOAD:-0}"
+done
+[ ${#hogs[@]} -gt 0 ] && kill "${hogs[@]}"
 exit $rc

@@ -37,5 +37,6 @@ expect 1 "$SIL" run --loopback --scenario tip-in --out /proc/cvtplant-no-such-di
 expect 0 "$CONTROLLER" --help
 expect 2 "$CONTROLLER" --bogus
 expect 2 "$CONTROLLER" --demand-Nm 900
+expect 2 "$CONTROLLER" --schedule sometimes
 expect 1 "$CONTROLLER" --iface nosuchcan0
 exit $rc

@@ -11,8 +11,9 @@
 #    a receive-queue overflow provoked with SIGSTOP + cangen must show up in
 #    PlantBusDiag and PlantStatus.
 # 2. Determinism: two fresh bridges, same scenario, byte-identical logs.
-# 3. Real time: 2 s at 1 kHz with cvtplant-controller at 10 ms beside it;
-#    jitter and overruns reported, a lenient sanity check.
+# 3. Real time: 3 s at 1 kHz with cvtplant-controller beside it for 2 s;
+#    jitter, overruns and the controller's fresh-data fraction reported, a
+#    lenient sanity check.
 # 4. Lock-step round trips (reported).
 # 5. gnuplot summary plot OUT/sil-summary.png.
 set -u
@@ -130,13 +131,15 @@ fi
 
 echo "sil_vcan: log checks $(awk "BEGIN{print $t3 - $t2}") s, determinism $(awk "BEGIN{print $(date +%s.%N) - $t3}") s"
 # ---- 3. real time, 4. round trips (figures, docs/sil.md#figures) -----------
-# Real time with the example controller free-running at 10 ms beside it.
-"$BUILD/hil/controller/cvtplant-controller" --iface "$IF" --demand-Nm 80 --duration-s 4 > "$OUT/controller-rt.json" &
-ctl_pid=$!
+# Real time with the example controller beside it, following the plant's
+# groups (docs/sil.md#controller-schedule): the bridge runs 3 s, the
+# controller the 2 s in the middle, so every control step has a plant.
+start_bridge bridge-rt --mode realtime --duration-s 3 --sched-fifo 50
+rt_pid=$bridge_pid
 sleep 0.5
-start_bridge bridge-rt --mode realtime --duration-s 2 --sched-fifo 50
-wait "$bridge_pid" || fail "real-time bridge"
-kill -TERM "$ctl_pid" 2>/dev/null; wait "$ctl_pid" || fail "controller exit status"
+"$BUILD/hil/controller/cvtplant-controller" --iface "$IF" --demand-Nm 80 --duration-s 2 > "$OUT/controller-rt.json" \
+  || fail "controller exit status"
+wait "$rt_pid" || fail "real-time bridge"
 $PY - "$OUT/bridge-rt.json" "$OUT/controller-rt.json" <<'PYEOF' || fail "real-time summary"
 import json, sys
 s = json.load(open(sys.argv[1]))
@@ -144,16 +147,17 @@ c = json.load(open(sys.argv[2]))
 rt = s["realtime"]
 j = rt["jitter_ns"]
 print("sil_vcan: real time 1 kHz with the controller: %d periods, %d overruns, SCHED_FIFO %s, lateness p50 %.1f us "
-      "p99 %.1f us p99.9 %.1f us max %.1f us; bridge accepted %d CtrlCmd-era frames, %d cmd timeouts; controller %s"
+      "p99 %.1f us p99.9 %.1f us max %.1f us; bridge accepted %d frames, %d cmd timeouts; controller %s"
       % (rt["periods"], rt["overruns"], rt["sched_fifo"], j["p50"] / 1e3, j["p99"] / 1e3, j["p99_9"] / 1e3,
          j["max"] / 1e3, s["rx"]["accepted"], s["cmd_timeouts"], c))
-# Lenient: TCG under load stalls for tens to hundreds of ms (each stall
-# longer than 50 ms is a command timeout and drains the queue), but a
-# quarter of the 200 commands of 2 s must be applied, nothing may be
-# rejected, and the controller must have received plant groups.
-ok = (rt["periods"] >= 2000 and j["max"] >= j["p99_9"] >= j["p99"] >= j["p50"] >= 0 and
+print("sil_vcan: controller steps with fresh plant data: %d of %d (%.3f), longest gap between steps %.1f ms"
+      % (c["fresh_periods"], c["periods"], c["fresh_fraction"], c["max_step_gap_ms"]))
+# Lenient: TCG under load stalls for tens to hundreds of ms, and a step
+# after a stall of more than 15 ms has no fresh group by definition. The
+# exact figures are the in-process test's (test_controller_schedule.cpp).
+ok = (rt["periods"] >= 3000 and j["max"] >= j["p99_9"] >= j["p99"] >= j["p50"] >= 0 and
       s["rx"]["accepted"] >= 50 and s["rx"]["rejected"] == 0 and s["plant_fault"] == "none" and
-      c["accepted"] >= 50 and c["rejected"] == 0)
+      c["accepted"] >= 50 and c["rejected"] == 0 and c["fresh_fraction"] >= 0.75)
 sys.exit(0 if ok else 1)
 PYEOF
 # Round trips, both ends on one CPU and on any CPU (hil/bench/sil-bench.sh
