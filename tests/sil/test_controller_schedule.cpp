@@ -145,3 +145,41 @@ TEST_CASE("controller schedule: fraction of control steps with fresh plant data,
   CHECK(aligned_min > fixed_min + 0.05);
   CHECK(fixed_on_time > 0);
 }
+
+TEST_CASE("controller node: a group the plant sent again is not fresh; a tag coming round after 16 samples is") {
+  port::VirtualClock clock;
+  port::LoopbackBus<3, 256> bus(&clock);  // bridge, harness, controller
+  sil::Bridge bridge(bus.node(0), clock);
+  REQUIRE(bridge.load_scene(*find_builtin_scene("tip-in")));
+  cvtctl::ControllerNode ctl(bus.node(2));
+  can::TxChannel<can::SimCtrl> sim;
+  std::uint8_t seq = 0;
+  auto request = [&](bool again) {
+    can::SimCtrl m;
+    m.sim_request = can::SimRequest::Step;
+    m.step_count = 10;
+    if (!again) seq = static_cast<std::uint8_t>((seq + 1) & 0x0F);
+    m.step_seq = seq;
+    can::CanFrame f;
+    REQUIRE(sim.encode(m, f) == can::CodecStatus::Ok);
+    REQUIRE(bus.node(1).send(f) == port::CanIoStatus::Ok);
+    bridge.service(0);
+    ctl.poll(0);
+  };
+  request(false);
+  REQUIRE(ctl.fresh_group());
+  const std::uint8_t used = ctl.speeds().sample_tag;
+  ctl.control_step(50.0f);
+  CHECK(ctl.counters().fresh_periods == 1);
+  request(true);  // the harness sends the same request again: same group
+  CHECK(ctl.group_complete());
+  CHECK(ctl.speeds().sample_tag == used);
+  CHECK_FALSE(ctl.fresh_group());
+  ctl.control_step(50.0f);
+  CHECK(ctl.counters().invalid_periods == 1);
+  // The controller misses 16 steps (a lock-step harness that does not run
+  // it, or a stalled ECU): the 16th new sample has the used tag again.
+  for (int i = 0; i < 16; ++i) request(false);
+  CHECK(ctl.speeds().sample_tag == used);
+  CHECK(ctl.fresh_group());
+}

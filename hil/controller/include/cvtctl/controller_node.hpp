@@ -98,9 +98,9 @@ class ControllerNode {
     return have_speeds_ && have_ratio_ && have_forces_ && speeds_.sample_tag == ratio_.sample_tag &&
            speeds_.sample_tag == forces_.sample_tag;
   }
-  // ... and it is not the sample the last step already used (a group the
-  // plant sent again carries the same tag). The tag has 4 bits: after
-  // exactly 16 missed groups a new sample looks used once.
+  // ... and it is not the sample the last step already used: a group the
+  // plant sent again (docs/sil.md#lost-frames) carries the used sample's
+  // tag and comes before any newer sample.
   bool fresh_group() const { return group_complete() && speeds_.sample_tag != last_used_tag_; }
   const cvt::can::PlantSpeeds& speeds() const { return speeds_; }
   const cvt::can::PlantRatio& ratio() const { return ratio_; }
@@ -135,7 +135,13 @@ class ControllerNode {
     }
     ++counters_.accepted;
     switch (any_.which) {
-      case cvt::can::MessageId::PlantSpeeds: speeds_ = any_.plant_speeds; have_speeds_ = true; break;
+      case cvt::can::MessageId::PlantSpeeds:
+        speeds_ = any_.plant_speeds;
+        have_speeds_ = true;
+        // A newer sample is in: the used tag can come round again (4 bits)
+        // without meaning a repeat.
+        if (speeds_.sample_tag != last_used_tag_) last_used_tag_ = -1;
+        break;
       case cvt::can::MessageId::PlantRatio: ratio_ = any_.plant_ratio; have_ratio_ = true; break;
       case cvt::can::MessageId::PlantForces: forces_ = any_.plant_forces; have_forces_ = true; break;
       case cvt::can::MessageId::PlantStatus: status_ = any_.plant_status; have_status_ = true; break;
