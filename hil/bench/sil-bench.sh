@@ -1,10 +1,14 @@
 #!/bin/bash
-# SIL figures (docs/sil.md#figures): lock-step round trips per second and
-# real-time 1 kHz jitter of cvtplant-bridge on vcan0. Run it where vcan0 is:
-#   hil/vcan-run --rw OUT -- hil/bench/sil-bench.sh BUILD_DIR OUT
-# (vcan-run says whether that was the host's vcan0 or the micro-VM.)
+# SIL figures (docs/sil.md#figures): lock-step round trips per second,
+# real-time 1 kHz jitter of cvtplant-bridge on vcan0, and the example
+# controller's fresh-data fraction with both schedules
+# (docs/sil.md#controller-schedule). Run it where vcan0 is:
+#   mkdir -p OUT && hil/vcan-run --rw OUT -- env [STEPS=N] [RT_S=S] [LOAD=N] hil/bench/sil-bench.sh BUILD_DIR OUT
+# (--rw OUT: the micro-VM shares only the listed directories writable, and
+# OUT must exist; vcan-run says whether it used the host's vcan0 or the VM.)
 # Environment: STEPS (round trips, default 20000), RT_S (seconds per
-# real-time run, default 10).
+# real-time run, default 10), LOAD (busy loops beside the controller-schedule
+# runs, default 0).
 set -u
 BUILD=$1 OUT=$2
 IF=${CVT_CAN_IF:-vcan0}
