@@ -447,9 +447,9 @@ class Bridge {
 
   // docs/can.md#layout "Output groups": Speeds, Ratio, Forces, [Diag,
   // BusDiag, CmdDiag,] Status.
-  // In real time the 100 ms frames (Diag, Status) go out only on every
-  // tenth 10 ms group, as the DBC cycle times say; there step_seq_ack is 0
-  // because no request is being acknowledged.
+  // In real time the 100 ms frames (the diagnostics, Status) go out only on
+  // every tenth 10 ms group, as the DBC cycle times say; there step_seq_ack
+  // is 0 because no request is being acknowledged.
   // A resent group repeats the last group's sample_tag: same sample, the
   // receivers can tell it from a new one.
   void send_group(std::uint8_t step_seq, bool with_diag, bool with_status = true, bool resend = false) {
