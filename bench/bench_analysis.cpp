@@ -17,7 +17,7 @@ namespace {
 const std::vector<double>& lorenz(std::size_t n) {
   static std::vector<double> cache;
   if (cache.size() < n) {
-    const Scene& s = find_scene("lorenz");
+    const Model& s = find_model("lorenz");
     const auto rows = s.trajectory(s.default_params, s.default_x0, 0.005, 50, static_cast<double>(n) * 0.01, 0.01);
     cache.clear();
     for (std::size_t i = 0; i < rows.size(); i += 3) cache.push_back(rows[i]);

@@ -1,5 +1,5 @@
 // Host cost of one 1 ms frame of the reduced-order plant for every row of the
-// cost table (lib/include/cvtplant/scene/cost_cases.hpp, docs/rom.md#cost),
+// cost table (bench/cost_cases.hpp, docs/rom.md#cost),
 // in float (the Cortex-M4F's type, whose instruction counts the target test
 // prints for the same frames) and in double. Benchmarks are named
 // "<scalar>/<row label>", e.g. float/scene/seed-case1.
@@ -8,7 +8,7 @@
 
 #include <string>
 
-#include "cvtplant/scene/cost_cases.hpp"
+#include "cost_cases.hpp"
 
 namespace {
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates the cost table of docs/rom.md#cost and prints it as markdown:
-# for every row of lib/include/cvtplant/scene/cost_cases.hpp (each built-in
+# for every row of bench/cost_cases.hpp (each built-in
 # scene at its real-time default, and each optional feature),
 #   - Cortex-M4F instructions per 1 ms frame in float (QEMU icount; the
 #     target test tests/target/test_rom_cost.cpp prints ICOUNT lines),

@@ -34,7 +34,7 @@ set(CMAKE_ASM_FLAGS_INIT "${CVT_ARM_CPU_FLAGS}")
 set(CMAKE_CXX_FLAGS_INIT "${_cvt_common} -fno-exceptions -fno-rtti -fno-threadsafe-statics")
 # newlib-nano (smaller libc, still only for memcpy/memset and libm); each
 # image supplies its own startup (-nostartfiles) and linker script
-# (port/cortex-m). The no-heap link check lives in port/cortex-m/no_heap.ld.
+# (port/cortex-m). The no-heap link check lives in port/cortex-m/ld/no_heap.ld.
 set(CMAKE_EXE_LINKER_FLAGS_INIT "${CVT_ARM_CPU_FLAGS} --specs=nano.specs -nostartfiles -Wl,--gc-sections")
 
 # Release-type builds: -O2, asserts off. CACHE so that CMake's GNU defaults

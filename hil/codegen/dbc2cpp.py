@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Generate the heap-free C++ codec (lib/include/cvtplant/can/messages.hpp)
+"""Generate the heap-free C++ codec (hil/codegen/include/cvtplant/can/messages.hpp)
 from the DBC (hil/cvtplant.dbc), which stays the single source of truth.
 
 The DBC is parsed with python3-canmatrix (Debian), an independent parser, so a
@@ -7,8 +7,8 @@ DBC that canmatrix reads differently from what we intended shows up here and
 in the agreement test (tests/can/agree_canmatrix.py).
 
 Usage:
-  dbc2cpp.py --dbc hil/cvtplant.dbc --out lib/include/cvtplant/can/messages.hpp
-  dbc2cpp.py --dbc hil/cvtplant.dbc --check lib/include/cvtplant/can/messages.hpp
+  dbc2cpp.py --dbc hil/cvtplant.dbc --out hil/codegen/include/cvtplant/can/messages.hpp
+  dbc2cpp.py --dbc hil/cvtplant.dbc --check hil/codegen/include/cvtplant/can/messages.hpp
 
 --check exits 1 (printing a diff) when the committed header is not what the
 DBC generates. Conventions enforced here are documented in docs/can.md#codegen.

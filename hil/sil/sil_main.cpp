@@ -20,8 +20,8 @@
 #include "cvtplant/port/loopback_transport.hpp"
 #include "cvtplant/sil/bridge.hpp"
 #include "cvtplant/sil/latency_stats.hpp"
-#include "posix_clock.hpp"
-#include "socketcan_transport.hpp"
+#include "cvtplant/port/posix_clock.hpp"
+#include "cvtplant/port/socketcan_transport.hpp"
 
 namespace {
 

@@ -32,19 +32,10 @@ from decimal import Decimal, ROUND_CEILING, ROUND_FLOOR
 logging.disable(logging.CRITICAL)
 import canmatrix  # noqa: E402
 import canmatrix.formats  # noqa: E402
+from e2e_profile1 import p01_crc  # noqa: E402
 
 E2E_SIGNALS = ("E2E_CRC", "E2E_Counter")
 
-
-def p01_crc(data_id, payload):
-    """Profile 1, DataIDMode BOTH, closed form: CRC-8 poly 0x1D, register
-    starting at 0x00, no final XOR, over id_lo, id_hi, payload[1:8]."""
-    reg = 0
-    for b in bytes([data_id & 0xFF, data_id >> 8]) + bytes(payload[1:8]):
-        reg ^= b
-        for _ in range(8):
-            reg = ((reg << 1) ^ 0x1D) & 0xFF if reg & 0x80 else (reg << 1) & 0xFF
-    return reg
 
 
 def f32(text):

@@ -14,17 +14,10 @@ from decimal import Decimal
 
 logging.disable(logging.CRITICAL)
 import canmatrix.formats  # noqa: E402
+from e2e_profile1 import p01_crc  # noqa: E402
 
 LINE = re.compile(r"^\((\d+\.\d{6})\) (\w+) ([0-9A-F]{3}|[0-9A-F]{8})#(R\d?|[0-9A-F]*)$")
 
-
-def p01_crc(data_id, payload):
-    reg = 0
-    for b in bytes([data_id & 0xFF, data_id >> 8]) + bytes(payload[1:8]):
-        reg ^= b
-        for _ in range(8):
-            reg = ((reg << 1) ^ 0x1D) & 0xFF if reg & 0x80 else (reg << 1) & 0xFF
-    return reg
 
 
 def main():

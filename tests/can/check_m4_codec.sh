@@ -13,7 +13,7 @@ mkdir -p "$OUT"
 "$CXX" -mcpu=cortex-m4 -mthumb -mfpu=fpv4-sp-d16 -mfloat-abi=hard \
   -fno-exceptions -fno-rtti -std=c++17 -O2 -Wall -Wextra -Werror \
   -ffp-contract=off -fno-fast-math \
-  -I"$SRC/lib/include" -I"$SRC/port/include" -I"$SRC/hil/controller/include" \
+  -I"$SRC/lib/include" -I"$SRC/hil/codegen/include" -I"$SRC/port/include" -I"$SRC/hil/controller/include" \
   -c "$UNIT" -o "$OBJ"
 undef=$("$NM" -u "$OBJ" | awk '{print $2}')
 echo "undefined symbols: ${undef:-<none>}"

@@ -7,8 +7,8 @@
 
 #include "cvtplant/can/messages.hpp"
 #include "cvtplant/port/loopback_transport.hpp"
-#include "posix_clock.hpp"
-#include "socketcan_transport.hpp"
+#include "cvtplant/port/posix_clock.hpp"
+#include "cvtplant/port/socketcan_transport.hpp"
 
 using namespace cvt;
 using port::CanBusState;

@@ -20,15 +20,8 @@ logging.disable(logging.CRITICAL)
 import can  # noqa: E402
 import canmatrix  # noqa: E402
 import canmatrix.formats  # noqa: E402
+from e2e_profile1 import p01_crc  # noqa: E402
 
-
-def p01_crc(data_id, payload):
-    reg = 0
-    for b in bytes([data_id & 0xFF, data_id >> 8]) + bytes(payload[1:8]):
-        reg ^= b
-        for _ in range(8):
-            reg = ((reg << 1) ^ 0x1D) & 0xFF if reg & 0x80 else (reg << 1) & 0xFF
-    return reg
 
 
 def main():

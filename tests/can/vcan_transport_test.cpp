@@ -17,8 +17,8 @@
 #include <vector>
 
 #include "cvtplant/can/messages.hpp"
-#include "posix_clock.hpp"
-#include "socketcan_transport.hpp"
+#include "cvtplant/port/posix_clock.hpp"
+#include "cvtplant/port/socketcan_transport.hpp"
 
 using namespace cvt;
 using port::CanIoStatus;

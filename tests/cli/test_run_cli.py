@@ -154,6 +154,20 @@ class BadInput(unittest.TestCase):
             p = write(d, "l.toml", 'base = "tip-in"\nfeatures = ["axial", "wedging"]\n[params]\nbeta0_deg = 76\n')
             self.assert_usage(run("run", "--scene", p), p + ":4:", "beta0_deg", "self-locking")
 
+    def test_rom_accuracy_refuses_a_plant_the_scalar_lacks(self):
+        # The fixed-point plants have no wedging: the candidates are refused
+        # before anything runs, never run without the feature.
+        shift = os.path.join(SCENES, "ratio-shift.toml")
+        r = run("rom-accuracy", "--scene", shift, "--scalar", "fixed", "--t-end", "0.01")
+        self.assertEqual(r.returncode, 2, r.stdout + r.stderr)
+        self.assertEqual(r.stdout, "")
+        self.assertEqual(r.stderr.strip(), "cvtplant rom-accuracy: error: --scalar fixed: features: wedging runs in "
+                         "double or float only: there is no fixed-point plant with it")
+        r = run("rom-accuracy", "--scene", shift, "--scalar", "float", "--t-end", "0.05", "--ref-substeps", "4",
+                "--candidates", "ros2:1", "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(json.loads(r.stdout)["rows"][0]["fault"], "none")
+
 
 if __name__ == "__main__":
     unittest.main()

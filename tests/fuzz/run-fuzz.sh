@@ -13,7 +13,7 @@ out=${CVT_FUZZ_BUILD:-$root/build-fuzz}
 CXX=${CXX_FUZZ:-clang++-14}
 mkdir -p "$out"
 "$CXX" -std=c++17 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
-  -ffp-contract=off -I"$root/lib/include" "$here/fuzz_can_decoder.cpp" -o "$out/fuzz_can_decoder"
+  -ffp-contract=off -I"$root/lib/include" -I"$root/hil/codegen/include" "$here/fuzz_can_decoder.cpp" -o "$out/fuzz_can_decoder"
 if [ $# -eq 0 ]; then set -- -max_total_time=20; fi
 mkdir -p "$out/corpus-new"
 exec "$out/fuzz_can_decoder" -max_len=600 -print_final_stats=1 "$@" "$out/corpus-new" "$here/corpus"

@@ -21,7 +21,7 @@ import sys
 import canmatrix.formats
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "can"))
-from vcan_peer import p01_crc  # noqa: E402
+from e2e_profile1 import p01_crc  # noqa: E402
 
 LINE = re.compile(r"^\((\d+)\.(\d{6})\) (\S+) ([0-9A-F]{3}|[0-9A-F]{8})#(R\d?|[0-9A-F]*)$")
 

@@ -176,7 +176,7 @@ TEST_CASE("lock-step: the latest valid command drives the plant and two runs are
   // The same inputs applied offline to the scene's simulator give the same
   // state: the bridge applied each command for exactly its 10 frames.
   const Scene& s = *find_builtin_scene("tip-in");
-  RomSimulator<double, sil::kAxialRoadLoad> sim(s.params, sim_config_of(s));
+  RomSimulator<double, rom_feature::axial | rom_feature::road_load> sim(s.params, sim_config_of(s));
   sim.reset(s.initial, scene_inputs_at<double>(s, 0.0));
   for (int k = 0; k < 30; ++k) {
     for (int i = 0; i < 10; ++i) {
@@ -802,7 +802,7 @@ TEST_CASE("real time: cyclic frames follow the DBC cycle times") {
   CHECK(rig.bridge.cmd_timeouts() == 0);
 }
 
-TEST_CASE("Reset selects a scene; an unknown feature set is a scene fault, not a crash") {
+TEST_CASE("Reset selects a scene; a scene the plants cannot run is a scene fault, not a crash") {
   Rig rig;
   rig.peer.request(can::SimRequest::Reset, 0, can::SceneId::GrossSlip);
   rig.bridge.service(0);
@@ -814,9 +814,29 @@ TEST_CASE("Reset selects a scene; an unknown feature set is a scene fault, not a
   CHECK(g.status.sim_time_us == 0u);
 
   Scene odd = *find_builtin_scene("tip-in");
-  odd.features = rom_feature::polygon;
+  odd.features = rom_feature::wedging;  // wedging without the axial feature has no plant
   CHECK_FALSE(rig.bridge.load_scene(odd));
   CHECK(rig.bridge.fault_scene());
+  // The previous scene stays loaded.
+  CHECK(std::strcmp(rig.bridge.plant().scene()->name, "gross-slip") == 0);
+}
+
+TEST_CASE("the bridge runs every feature set: chordal action and wedging step like the built-in plants") {
+  for (const std::uint32_t features : {rom_feature::polygon | rom_feature::deformation,
+                                       rom_feature::axial | rom_feature::wedging | rom_feature::road_load}) {
+    CAPTURE(features);
+    Scene s = *find_builtin_scene("seed-case1");
+    s.features = features;
+    s.substeps = 4;  // chordal action needs >= 4 substeps (docs/rom.md#polygon)
+    Rig rig;
+    REQUIRE(rig.bridge.load_scene(s));
+    rig.peer.request(can::SimRequest::Step, 10);
+    rig.bridge.service(0);
+    CHECK(rig.bridge.plant().frames() == 10);
+    CHECK(rig.bridge.plant().fault() == RomFault::none);
+    // The drive train starts from rest under 100 N m: the driver has spun up.
+    CHECK(rig.bridge.plant().outputs().omega1_rad_s > 0.0);
+  }
 }
 
 namespace {

@@ -1,13 +1,13 @@
 // Cost of one 1 ms frame of the reduced-order plant on the Cortex-M4F, in
 // float (the M4F's hardware type), for every row of the cost table
-// (lib/include/cvtplant/scene/cost_cases.hpp; docs/rom.md#cost). Prints
+// (bench/cost_cases.hpp; docs/rom.md#cost). Prints
 //     ICOUNT rom_frame float <label> <instructions>
 // which bench/rom-cost-table.sh collects. A frame is RomSimulator::step_frame:
 // the scene's substeps of ROS2 (Jacobian, LU, two right-hand sides each), the
 // friction evaluation shared by them and the energy ledger, and the watchdog.
 #include "cvtplant/plant/rom_step.hpp"
 #include "cvtplant/port/icount.hpp"
-#include "cvtplant/scene/cost_cases.hpp"
+#include "cost_cases.hpp"
 #include "harness.hpp"
 
 using namespace cvt;
@@ -15,7 +15,7 @@ using cvt::port::console;
 
 namespace {
 
-// Issue #3's float goal for the default scene (seed-case1 at the real-time
+// The float goal for the default scene (seed-case1 at the real-time
 // default, one ROS2 step per frame) is 5,000 instructions per frame
 // (docs/rom.md#cost says where they go). Instruction counts under icount are
 // exact for a given compiler, so the goal is asserted.

@@ -1,4 +1,4 @@
-// Generated codec (lib/include/cvtplant/can/messages.hpp) against the DBC's
+// Generated codec (hil/codegen/include/cvtplant/can/messages.hpp) against the DBC's
 // intent: bit layout, rounding, range/NaN/enum rejection, DLC/ID/kind
 // rejection and the receive pipeline (docs/can.md).
 #include <doctest/doctest.h>

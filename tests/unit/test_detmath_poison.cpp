@@ -34,9 +34,8 @@ namespace {
 // object file really contains each code path.
 template <class T>
 T exercise(T x) {
-  namespace dm = cvt::dm;
-  return dm::abs(x) + dm::sqrt(dm::abs(x)) + dm::atan(x) + dm::exp(x) + dm::tanh(x) + dm::sin(x) + dm::cos(x) +
-         dm::sign(x);
+  return cvt::abs(x) + cvt::sqrt(cvt::abs(x)) + cvt::atan(x) + cvt::exp(x) + cvt::tanh(x) + cvt::sin(x) + cvt::cos(x) +
+         cvt::sign(x);
 }
 
 }  // namespace

@@ -43,7 +43,11 @@ struct StiffProthero {
   double lambda = -1e4;
   template <class S>
   void derivative(const Eigen::Matrix<S, 2, 1>& x, Eigen::Matrix<S, 2, 1>& dx) const {
-    dx(0) = S(lambda) * (x(0) - cvt::dm::cos(x(1))) - cvt::dm::sin(x(1));
+    // Generic code outside namespace cvt names the math once; the dual
+    // overloads are found by argument-dependent lookup (detmath.hpp).
+    using cvt::cos;
+    using cvt::sin;
+    dx(0) = S(lambda) * (x(0) - cos(x(1))) - sin(x(1));
     dx(1) = S(1.0);
   }
 };

@@ -118,15 +118,16 @@ TEST_CASE("ROM analytic Jacobian equals the dual-number Jacobian for every featu
   cvt::RomInitial x0 = driving_state(99.9);
   namespace f = cvt::rom_feature;
   for (const auto& fr : {cvt::friction_presets::table2_case1<double>(), cvt::friction_presets::table2_case2<double>()}) {
+    p.friction = fr;  // each law in turn: case 1's exponential ramp, case 2's Stribeck hump
+    CAPTURE(static_cast<int>(fr.law));
     check_jacobian_against_duals<0>(p, x0, 3000.0);
     check_jacobian_against_duals<f::axial>(p, x0, 3000.0);
     check_jacobian_against_duals<f::road_load>(p, x0, 3000.0);
     check_jacobian_against_duals<f::deformation>(p, x0, 3000.0);
     check_jacobian_against_duals<f::polygon>(p, x0, 3000.0);
     check_jacobian_against_duals<f::basic>(p, x0, 3000.0);
-    p.friction = fr;
   }
-  // Near stick, where the atan slope dominates.
+  // Near stick, where the atan slope dominates (case 2, the last law above).
   x0.omega2_rad_s = 100.0;
   check_jacobian_against_duals<f::basic>(p, x0, 3000.0);
   p.hold_driver_speed = true;

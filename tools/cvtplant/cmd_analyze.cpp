@@ -23,7 +23,9 @@
 #include "cvtplant/analysis/systems.hpp"
 #include "cvtplant/analysis/test01.hpp"
 #include "io_util.hpp"
+#include "model_resolve.hpp"
 #include "registry.hpp"
+#include "scene_file.hpp"
 
 namespace {
 
@@ -384,7 +386,7 @@ cvtcli::Action register_analyze(CLI::App& app) {
     };
     auto a = std::make_shared<T>();
     auto* c = an->add_subcommand("trajectory", "simulate a scene (RK4) and write its states as CSV");
-    c->add_option("--scene", a->scene, "scene name (see cvtplant lyapunov --list)")->required();
+    c->add_option("--scene", a->scene, "model (see cvtplant lyapunov --list) or plant scene (built-in or TOML file) with constant inputs")->required();
     c->add_option("--x0", a->x0, "initial state, comma-separated");
     c->add_option("--param", a->params, "name=value (repeatable)");
     c->add_option("--dt", a->dt, "RK4 step [s] (default: the scene's)");
@@ -393,7 +395,8 @@ cvtcli::Action register_analyze(CLI::App& app) {
     c->add_option("--sample-dt", a->sample_dt, "output interval [s]");
     c->add_option("--out", a->out, "output CSV ('-' = stdout)");
     tools.push_back({c, [a] {
-                       const Scene& s = find_scene(a->scene);
+                       const auto model = cvtcli::resolve_model(a->scene);
+                       const Model& s = *model;
                        Params over;
                        for (const auto& kv : a->params) {
                          const std::size_t eq = kv.find('=');
@@ -430,7 +433,7 @@ cvtcli::Action register_analyze(CLI::App& app) {
     };
     auto a = std::make_shared<S>();
     auto* c = an->add_subcommand("sweep", "parameter sweep: spectrum + bifurcation data, parallel and shardable");
-    c->add_option("--scene", a->scene, "scene name")->required();
+    c->add_option("--scene", a->scene, "model (see cvtplant lyapunov --list) or plant scene (built-in or TOML file) with constant inputs")->required();
     c->add_option("--axis", a->a1, "first axis name=lo:hi:n")->required();
     c->add_option("--axis2", a->a2, "optional second axis name=lo:hi:n");
     c->add_option("--param", a->params, "fixed override name=value (repeatable)");
@@ -446,7 +449,9 @@ cvtcli::Action register_analyze(CLI::App& app) {
     tools.push_back({c, [a] {
                        SweepSpec sp;
                        sp.scene = a->scene;
-                       const Scene& s = find_scene(a->scene);
+                       const auto model = cvtcli::resolve_model(a->scene);
+                       const Model& s = *model;
+                       sp.model = model.get();
                        for (const auto& kv : a->params) {
                          const std::size_t eq = kv.find('=');
                          if (eq == std::string::npos) throw cvtcli::UsageError{"--param '" + kv + "': expected name=value"};
@@ -522,8 +527,9 @@ cvtcli::Action register_analyze(CLI::App& app) {
                          files.insert(files.end(), f.begin(), f.end());
                        }
                        if (!scene->empty()) {
-                         const Scene& s = find_scene(*scene);
-                         auto f = scene_figures(s, s.default_params, s.default_x0, s.defaults.dt, *t_end, *dir);
+                         const auto model = cvtcli::resolve_model(*scene);
+                         const Model& s = *model;
+                         auto f = model_figures(s, s.default_params, s.default_x0, s.defaults.dt, *t_end, *dir);
                          files.insert(files.end(), f.begin(), f.end());
                        }
                        if (!sweep->empty()) {
@@ -550,7 +556,7 @@ cvtcli::Action register_analyze(CLI::App& app) {
                                  "the seed's section 4 pipeline on ROM plant signals (1 ms samples, transient removed, "
                                  "normalised, AMI delay, FNN/Cao dimension, Rosenstein/Kantz exponent, recurrence "
                                  "plot + RQA, 0-1 test, verdict) with figures and a JSON summary");
-    c->add_option("--scene", a->scene, "built-in ROM scene (seed-case1, seed-case2, ...; see cvtplant scenes)")->required();
+    c->add_option("--scene", a->scene, "plant scene: built-in (seed-case1, seed-case2, ...; see cvtplant scenes) or a TOML scene file")->required();
     c->add_option("--out-dir", a->out_dir, "output directory: <signal>/*.png and summary.json")->required();
     c->add_option("--signals", a->signals, "comma-separated plant outputs (F_ax, torque_transmitted, slip, v_rel1, ...)");
     c->add_option("--t-end", a->t_end, "simulated time [s] (default: the scene's)");
@@ -572,7 +578,8 @@ cvtcli::Action register_analyze(CLI::App& app) {
                            if (!n.empty()) names.push_back(n);
                        }
                        if (names.empty()) throw cvtcli::UsageError{"--signals is empty"};
-                       const RomSeries run = rom_scene_series(a->scene, names, a->t_end);
+                       const auto scene = cvtcli::resolve_scene(a->scene);
+                       const RomSeries run = rom_scene_series(scene->scene, scene->name, names, a->t_end);
                        ensure_dir(a->out_dir);
                        if (run.fault != "none")
                          throw cvtcli::RunError{"the plant faulted (" + run.fault + ") in scene " + a->scene};

@@ -9,6 +9,7 @@
 #include "cvtplant/analysis/errors.hpp"
 #include "cvtplant/analysis/systems.hpp"
 #include "io_util.hpp"
+#include "model_resolve.hpp"
 #include "registry.hpp"
 
 namespace {
@@ -128,8 +129,8 @@ cvtcli::Action register_lyapunov(CLI::App& app) {
   };
   auto a = std::make_shared<Args>();
   sub->add_option("--scene", a->scene,
-                  "lorenz, rossler, oscillator-coulomb, oscillator-stribeck, henon, logistic, and the ROM plant's "
-                  "seed-case1, seed-case2 (see --list)");
+                  "lorenz, rossler, oscillator-coulomb, oscillator-stribeck, henon, logistic (see --list), or a "
+                  "plant scene with constant inputs: built-in (see `cvtplant scenes`) or a TOML scene file");
   sub->add_option("--x0", a->x0, "initial state, comma-separated (default: the scene's; oscillators: 0,3,0,6)");
   sub->add_option("--param", a->params, "override a scene parameter, name=value (repeatable)");
   sub->add_option("--t-transient", a->t_transient, "discarded time [s] (maps: iterations)");
@@ -145,18 +146,19 @@ cvtcli::Action register_lyapunov(CLI::App& app) {
     try {
       if (a->list) {
         nlohmann::json j = nlohmann::json::array();
-        for (const auto& s : scenes())
+        for (const auto& s : models())
           j.push_back({{"name", s.name}, {"description", s.description}, {"map", s.is_map}, {"params", s.default_params},
                        {"x0", s.default_x0}, {"states", s.state_names}});
         if (a->json) {
           cvtcli::print_json(j);
         } else {
-          for (const auto& s : scenes()) std::printf("%-22s %s\n", s.name.c_str(), s.description.c_str());
+          for (const auto& s : models()) std::printf("%-22s %s\n", s.name.c_str(), s.description.c_str());
         }
         return 0;
       }
       if (a->scene.empty()) throw cvtcli::UsageError{"--scene is required (see --list)"};
-      const Scene& s = find_scene(a->scene);
+      const auto model = cvtcli::resolve_model(a->scene);
+      const Model& s = *model;
       Params over;
       for (const auto& kv : a->params) {
         const std::size_t eq = kv.find('=');

@@ -14,18 +14,61 @@
 #include "commands.hpp"
 #include "io_util.hpp"
 #include "registry.hpp"
-#include "cmd_rom_accuracy_collector.hpp"
 #include "scene_file.hpp"
+#include "scene_simulator.hpp"
 #include "cvtplant/scene/scene_runner.hpp"
 
 namespace {
 
-using cvtcli::rom_accuracy_cmd::Collector;
-using cvtcli::rom_accuracy_cmd::Trace;
+struct Trace {
+  std::vector<double> w1, w2, fax, xd1;
+  cvt::RomFault fault = cvt::RomFault::none;
+  long frames = 0;
+  double wall_s = 0;
+  double residual_rel = 0;
+};
 
-Trace collect(cvt::ScalarKind k, Collector& c) {
-  namespace ra = cvtcli::rom_accuracy_cmd;
-  return cvtcli::by_scalar(k, c, &ra::collect_double, &ra::collect_float, &ra::collect_fixed);
+// Samples the speeds, the axial force and the first lump's velocity every
+// frame, on the scene's plant in any scalar type.
+struct Collector {
+  const cvt::Scene& scene;
+  cvt::RomSimConfig cfg;
+
+  template <class T>
+  Trace operator()(cvt::IRomSimulator<T>& sim_run) {
+    Trace tr;
+    const long n = static_cast<long>(scene.t_end_s / cfg.frame_s + 0.5);
+    tr.w1.reserve(n + 1);
+    tr.w2.reserve(n + 1);
+    tr.fax.reserve(n + 1);
+    tr.xd1.reserve(n + 1);
+    const int kV1 = cvt::rom_state_index(sim_run.features()).xd1;
+    auto on_frame = [&](long i, double, const cvt::IRomSimulator<T>& sim) {
+      if (sim.fault() != cvt::RomFault::none) return false;
+      const auto o = sim.outputs();
+      tr.w1.push_back(cvt::to_double(o.omega1_rad_s));
+      tr.w2.push_back(cvt::to_double(o.omega2_rad_s));
+      tr.fax.push_back(cvt::to_double(o.clamp_force_N));
+      T x[cvt::kRomMaxStates];
+      sim.state(x);
+      tr.xd1.push_back(cvt::to_double(x[kV1]));
+      tr.frames = i;
+      const auto& e = sim.energy();
+      tr.residual_rel = e.scale_J() > 0 ? double(e.residual_J() / e.scale_J()) : 0.0;
+      return true;
+    };
+    const auto t0 = std::chrono::steady_clock::now();
+    tr.fault = cvt::run_frames(sim_run, scene, cfg.frame_s, on_frame);
+    tr.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return tr;
+  }
+};
+
+// The trace of `s` in scalar k with the settings c; a plant the scalar type
+// does not have is refused (exit 2), never run with fewer features.
+Trace collect(const cvt::Scene& s, cvt::ScalarKind k, const cvt::RomSimConfig& c) {
+  return cvtcli::with_scene_simulator(s, k, c, Collector{s, c},
+                                      std::string("--scalar ") + cvt::scalar_kind_name(k) + ": ");
 }
 
 // RMS(a - ref) / RMS(ref) over the common frames; inf if the candidate stopped early.
@@ -85,12 +128,13 @@ cvtcli::Action register_rom_accuracy(CLI::App& app) {
       if (n < 1 || n > 100000) throw cvtcli::UsageError{"--candidates: substeps must be in 1..100000"};
       cands.push_back({m, n});
     }
+    cvtcli::check_scene_simulator(s, cvt::ScalarKind::f64);
+    cvtcli::check_scene_simulator(s, sk, std::string("--scalar ") + opt->scalar + ": ");
     cvt::RomSimConfig rc = cvt::sim_config_of(s);
     rc.method = cvt::Method::ros2;
     rc.substeps = opt->ref_substeps;
     rc.watchdog_energy = false;
-    Collector refc{s, rc};
-    const Trace ref = collect(cvt::ScalarKind::f64, refc);
+    const Trace ref = collect(s, cvt::ScalarKind::f64, rc);
     if (ref.fault != cvt::RomFault::none) throw cvtcli::RunError{"the reference run faulted"};
 
     nlohmann::json rows = nlohmann::json::array();
@@ -101,8 +145,7 @@ cvtcli::Action register_rom_accuracy(CLI::App& app) {
       cvt::RomSimConfig cc = cvt::sim_config_of(s);
       cc.method = c.m;
       cc.substeps = c.substeps;
-      Collector col{s, cc};
-      const Trace tr = collect(sk, col);
+      const Trace tr = collect(s, sk, cc);
       const double e1 = rel_rms(tr.w1, ref.w1), e2 = rel_rms(tr.w2, ref.w2), ef = rel_rms(tr.fax, ref.fax),
                    ex = rel_rms(tr.xd1, ref.xd1);
       const double ns = 1e9 * tr.wall_s / std::max<long>(1, tr.frames);

@@ -11,14 +11,110 @@
 #include "commands.hpp"
 #include "io_util.hpp"
 #include "registry.hpp"
-#include "cmd_run_runner.hpp"
 #include "scene_file.hpp"
+#include "scene_simulator.hpp"
 #include "cvtplant/scene/scene_runner.hpp"
 
 namespace {
 
-using cvtcli::run_cmd::Result;
-using cvtcli::run_cmd::Runner;
+struct Result {
+  cvt::RomFault fault = cvt::RomFault::none;
+  long frames = 0;
+  double t_end_s = 0;
+  double wall_s = 0;
+  double stored0 = 0, stored = 0, input = 0, actuator = 0, load = 0, friction = 0, damping = 0, residual = 0,
+         scale = 0;
+  double mean_w1 = 0, mean_w2 = 0, mean_fax = 0, max_abs_slip = 0;
+  double final_w1 = 0, final_w2 = 0, final_fax = 0, final_slip = 0, final_torque = 0;
+};
+
+// The frame loop on the scene's plant (any scalar, any feature set).
+struct Runner {
+  const cvt::Scene& scene;
+  std::FILE* csv;
+  int every;
+
+  template <class T>
+  Result operator()(cvt::IRomSimulator<T>& simulator) {
+    using Sim = cvt::IRomSimulator<T>;
+    const std::uint32_t log = scene.log;
+    const int n_states = simulator.state_count();
+    if (csv != nullptr) {
+      std::fprintf(csv, "t,omega1,omega2,F_ax,slip");
+      if (log & cvt::rom_log::torques) std::fprintf(csv, ",tau_in,tau_load,torque_transmitted");
+      if (log & cvt::rom_log::friction) std::fprintf(csv, ",F1,F2,v_rel1,v_rel2,stick1,stick2");
+      if (log & cvt::rom_log::ratios) std::fprintf(csv, ",speed_ratio,geometric_ratio,r1,r2");
+      if (log & cvt::rom_log::energy)
+        std::fprintf(csv, ",E_stored,W_in,W_actuator,W_load,W_friction,W_damping,E_residual");
+      if (log & cvt::rom_log::states)
+        for (int k = 0; k < n_states; ++k) std::fprintf(csv, ",%s", cvt::rom_state_name(simulator.features(), k));
+      std::fprintf(csv, ",fault\n");
+    }
+    Result r;
+    double sum_w1 = 0, sum_w2 = 0, sum_fax = 0;
+    auto d = [](const T& v) { return cvt::to_double(v); };
+    auto on_frame = [&](long i, double t, const Sim& sim) {
+      const cvt::RomOutputs<T> o = sim.outputs();
+      const auto& e = sim.energy();
+      if (i > 0) {
+        sum_w1 += d(o.omega1_rad_s);
+        sum_w2 += d(o.omega2_rad_s);
+        sum_fax += d(o.clamp_force_N);
+        r.max_abs_slip = std::max(r.max_abs_slip, std::fabs(d(o.slip)));
+      }
+      r.frames = i;
+      r.t_end_s = t;
+      if (csv != nullptr && (i % every == 0 || sim.fault() != cvt::RomFault::none)) {
+        std::fprintf(csv, "%.9g,%.10g,%.10g,%.10g,%.10g", t, d(o.omega1_rad_s), d(o.omega2_rad_s), d(o.clamp_force_N),
+                     d(o.slip));
+        if (log & cvt::rom_log::torques)
+          std::fprintf(csv, ",%.10g,%.10g,%.10g", d(o.tau_in_Nm), d(o.tau_load_Nm), d(o.torque_transmitted_Nm));
+        if (log & cvt::rom_log::friction)
+          std::fprintf(csv, ",%.10g,%.10g,%.10g,%.10g,%d,%d", d(o.friction1_N), d(o.friction2_N), d(o.v_rel1_m_s),
+                       d(o.v_rel2_m_s), o.stick1 ? 1 : 0, o.stick2 ? 1 : 0);
+        if (log & cvt::rom_log::ratios)
+          std::fprintf(csv, ",%.10g,%.10g,%.10g,%.10g", d(o.speed_ratio), d(o.geometric_ratio), d(o.radius1_m),
+                       d(o.radius2_m));
+        if (log & cvt::rom_log::energy)
+          std::fprintf(csv, ",%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.6g", double(e.stored_J), double(e.input_J),
+                       double(e.actuator_J), double(e.load_J), double(e.friction_loss_J), double(e.damping_loss_J),
+                       double(e.residual_J()));
+        if (log & cvt::rom_log::states) {
+          double xs[cvt::kRomMaxStates];
+          sim.state_si(xs);  // displacements in m whatever the scalar's internal units
+          for (int k = 0; k < n_states; ++k) std::fprintf(csv, ",%.12g", xs[k]);
+        }
+        std::fprintf(csv, ",%s\n", cvt::rom_fault_name(sim.fault()));
+      }
+      if (sim.fault() != cvt::RomFault::none || i == cvt::scene_frames(scene)) {
+        r.stored0 = double(e.stored0_J);
+        r.stored = double(e.stored_J);
+        r.input = double(e.input_J);
+        r.actuator = double(e.actuator_J);
+        r.load = double(e.load_J);
+        r.friction = double(e.friction_loss_J);
+        r.damping = double(e.damping_loss_J);
+        r.residual = double(e.residual_J());
+        r.scale = double(e.scale_J());
+        r.final_w1 = d(o.omega1_rad_s);
+        r.final_w2 = d(o.omega2_rad_s);
+        r.final_fax = d(o.clamp_force_N);
+        r.final_slip = d(o.slip);
+        r.final_torque = d(o.torque_transmitted_Nm);
+      }
+      return true;
+    };
+    const auto t0 = std::chrono::steady_clock::now();
+    r.fault = cvt::run_frames(simulator, scene, scene.frame_s, on_frame);
+    r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double n = static_cast<double>(std::max<long>(1, r.frames));
+    r.mean_w1 = sum_w1 / n;
+    r.mean_w2 = sum_w2 / n;
+    r.mean_fax = sum_fax / n;
+    return r;
+  }
+};
+
 
 struct Options {
   std::string scene;
@@ -72,9 +168,7 @@ cvtcli::Action register_run(CLI::App& app) {
       throw cvtcli::UsageError{"--dt: q16.16 cannot represent substeps below 4.8e-7 s to 2 %"};
 
     std::FILE* csv = o.csv.empty() ? nullptr : cvtcli::open_output(o.csv);
-    Runner runner{s, csv, o.every};
-    namespace rc = cvtcli::run_cmd;
-    const Result r = cvtcli::by_scalar(s.scalar, runner, &rc::run_double, &rc::run_float, &rc::run_fixed);
+    const Result r = cvtcli::with_scene_simulator(s, s.scalar, cvt::sim_config_of(s), Runner{s, csv, o.every});
     cvtcli::close_output(csv);
 
     const double frames = static_cast<double>(std::max<long>(1, r.frames));

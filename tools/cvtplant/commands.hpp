@@ -24,8 +24,8 @@ struct RunError {
 using Action = std::function<int()>;
 
 // Registers a subcommand on `app` and returns the action to run if it was
-// selected. Each cmd_*.cpp defines one of these and adds it to the table in
-// main.cpp.
+// selected. Each cmd_*.cpp defines one of these and registers it itself at
+// static initialisation (registry.hpp): no central list to edit.
 using Registrar = Action (*)(CLI::App& app);
 
 }  // namespace cvtcli

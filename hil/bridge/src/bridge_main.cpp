@@ -14,9 +14,9 @@
 
 #include "cvtplant/sil/bridge.hpp"
 #include "cvtplant/sil/latency_stats.hpp"
-#include "posix_clock.hpp"
+#include "cvtplant/port/posix_clock.hpp"
 #include "stop_flag.hpp"
-#include "socketcan_transport.hpp"
+#include "cvtplant/port/socketcan_transport.hpp"
 
 namespace {
 

@@ -10,9 +10,9 @@
 
 #include "cvtctl/control_schedule.hpp"
 #include "cvtctl/controller_node.hpp"
-#include "posix_clock.hpp"
+#include "cvtplant/port/posix_clock.hpp"
 #include "stop_flag.hpp"
-#include "socketcan_transport.hpp"
+#include "cvtplant/port/socketcan_transport.hpp"
 
 namespace {
 

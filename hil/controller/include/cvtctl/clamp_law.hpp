@@ -1,7 +1,7 @@
 // Clamping-force control law of the example controller (docs/sil.md#controller).
 // Heap-free, float only, no libm call: it is the part of the firmware that
-// would be cross-compiled for the ECU (the Cortex-M4F build compiles it,
-// tests/sil/check_m4_controller.sh).
+// would be cross-compiled for the ECU (ctest sil_controller_cortex_m4 compiles
+// it for Cortex-M4F and refuses heap, exception and RTTI references).
 //
 // The belt can carry tau_cap = 2 mu0 F_ax r1 / cos(beta) (docs/rom.md#contact).
 // The law keeps tau_cap = safety * tau_ref, where tau_ref is the larger of the
@@ -13,12 +13,14 @@
 // the extra clamping then decays back to the feed-forward value.
 #pragma once
 
+#include "cvtplant/physics/seed.hpp"
+
 namespace cvtctl {
 
 struct ClampLawParams {
   // Calibration the ECU holds for its CVT (tip-in scene values, docs/rom.md).
-  float mu0 = 0.25f;
-  float r1_m = 0.0762f;
+  float mu0 = static_cast<float>(cvt::seed::kMu0);
+  float r1_m = static_cast<float>(cvt::seed::kDriverPitchRadius_m);
   float cos_beta = 0.96592583f;  // cos(15 deg): precomputed, no libm on the target
   float safety = 1.3f;           // torque-capacity safety factor kept by feed-forward
   float clamp_min_N = 1000.0f;   // keeps the chain seated at zero torque

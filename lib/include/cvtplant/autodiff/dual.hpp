@@ -1,8 +1,8 @@
 #pragma once
 // Forward-mode dual numbers with a fixed number N of directional derivatives,
 // for Jacobians of the plant right-hand side (docs/numerics.md#jacobians).
-// Heap-free: the derivative part is a plain array. The deterministic math
-// functions of cvt::dm are extended to duals by the chain rule.
+// Heap-free: the derivative part is a plain array. The deterministic math is
+// extended to duals by the chain rule (below).
 #include <Eigen/Core>
 
 #include "cvtplant/math/detmath.hpp"
@@ -80,40 +80,42 @@ template <class T, int N> bool operator>=(const Dual<T, N>& a, const Dual<T, N>&
 template <class T, int N> bool operator==(const Dual<T, N>& a, const Dual<T, N>& b) { return a.v == b.v; }
 template <class T, int N> bool operator!=(const Dual<T, N>& a, const Dual<T, N>& b) { return a.v != b.v; }
 
-namespace dm {
-
-// Chain rule: f(a) with f'(a.v) = slope.
+// The math of dual numbers, next to the type and found by argument-dependent
+// lookup (docs/numerics.md#scalar-math): each function by the chain rule on
+// the deterministic math of T, so a Jacobian by duals rounds like the plant.
+namespace dual_detail {
+// f(a) with f'(a.v) = slope.
 template <class T, int N>
 Dual<T, N> chain(const Dual<T, N>& a, const T& value, const T& slope) {
   Dual<T, N> r(value);
   for (int i = 0; i < N; ++i) r.d[i] = slope * a.d[i];
   return r;
 }
+}  // namespace dual_detail
 
 template <class T, int N> Dual<T, N> abs(const Dual<T, N>& a) {
   // Subgradient 0 at the kink: the friction laws multiply |v| terms by s(0) = 0.
-  return chain(a, dm::abs(a.v), dm::sign(a.v));
+  return dual_detail::chain(a, abs(a.v), sign(a.v));
 }
-template <class T, int N> Dual<T, N> sign(const Dual<T, N>& a) { return Dual<T, N>(dm::sign(a.v)); }
+template <class T, int N> Dual<T, N> sign(const Dual<T, N>& a) { return Dual<T, N>(sign(a.v)); }
 template <class T, int N> Dual<T, N> sqrt(const Dual<T, N>& a) {
-  const T s = dm::sqrt(a.v);
-  return chain(a, s, T(0.5) / s);
+  const T s = sqrt(a.v);
+  return dual_detail::chain(a, s, T(0.5) / s);
 }
 template <class T, int N> Dual<T, N> exp(const Dual<T, N>& a) {
-  const T e = dm::exp(a.v);
-  return chain(a, e, e);
+  const T e = exp(a.v);
+  return dual_detail::chain(a, e, e);
 }
 template <class T, int N> Dual<T, N> atan(const Dual<T, N>& a) {
-  return chain(a, dm::atan(a.v), T(1) / (T(1) + a.v * a.v));
+  return dual_detail::chain(a, atan(a.v), T(1) / (T(1) + a.v * a.v));
 }
 template <class T, int N> Dual<T, N> tanh(const Dual<T, N>& a) {
-  const T t = dm::tanh(a.v);
-  return chain(a, t, T(1) - t * t);
+  const T t = tanh(a.v);
+  return dual_detail::chain(a, t, T(1) - t * t);
 }
-template <class T, int N> Dual<T, N> sin(const Dual<T, N>& a) { return chain(a, dm::sin(a.v), dm::cos(a.v)); }
-template <class T, int N> Dual<T, N> cos(const Dual<T, N>& a) { return chain(a, dm::cos(a.v), -dm::sin(a.v)); }
+template <class T, int N> Dual<T, N> sin(const Dual<T, N>& a) { return dual_detail::chain(a, sin(a.v), cos(a.v)); }
+template <class T, int N> Dual<T, N> cos(const Dual<T, N>& a) { return dual_detail::chain(a, cos(a.v), -sin(a.v)); }
 
-}  // namespace dm
 }  // namespace cvt
 
 namespace Eigen {

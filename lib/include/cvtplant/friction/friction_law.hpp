@@ -13,6 +13,7 @@
 #include <cstdint>
 
 #include "cvtplant/math/detmath.hpp"
+#include "cvtplant/physics/seed.hpp"
 
 namespace cvt {
 
@@ -56,9 +57,9 @@ template <class T>
 constexpr FrictionParams<T> oscillator_coulomb() {
   FrictionParams<T> p;
   p.law = FrictionLaw::constant;
-  p.mu0 = T(0.25);
+  p.mu0 = T(seed::kMu0);
   p.sign = SignFunction::atan;
-  p.lambda_s_m = T(1e4);
+  p.lambda_s_m = T(seed::kOscSignSlope_s_m);
   return p;
 }
 
@@ -67,12 +68,12 @@ template <class T>
 constexpr FrictionParams<T> oscillator_stribeck() {
   FrictionParams<T> p;
   p.law = FrictionLaw::case2;
-  p.mu0 = T(0.25);
-  p.sigma = T(6.5);
-  p.kappa_s_m = T(5);
-  p.chi_s_m = T(1);
+  p.mu0 = T(seed::kMu0);
+  p.sigma = T(seed::kOscStribeckSigma);
+  p.kappa_s_m = T(seed::kOscStribeckKappa_s_m);
+  p.chi_s_m = T(seed::kOscStribeckChi_s_m);
   p.sign = SignFunction::atan;
-  p.lambda_s_m = T(1e4);
+  p.lambda_s_m = T(seed::kOscSignSlope_s_m);
   return p;
 }
 
@@ -81,11 +82,11 @@ template <class T>
 constexpr FrictionParams<T> table2_case1() {
   FrictionParams<T> p;
   p.law = FrictionLaw::case1;
-  p.mu0 = T(0.25);
-  p.a = T(0.003);
-  p.b_m_s = T(0.1);
+  p.mu0 = T(seed::kMu0);
+  p.a = T(seed::kCase1A);
+  p.b_m_s = T(seed::kCase1B_m_s);
   p.sign = SignFunction::atan;
-  p.lambda_s_m = T(1e4);
+  p.lambda_s_m = T(seed::kOscSignSlope_s_m);
   return p;
 }
 
@@ -94,12 +95,12 @@ template <class T>
 constexpr FrictionParams<T> table2_case2() {
   FrictionParams<T> p;
   p.law = FrictionLaw::case2;
-  p.mu0 = T(0.25);
-  p.sigma = T(3.5);
-  p.kappa_s_m = T(10);
-  p.chi_s_m = T(3);
+  p.mu0 = T(seed::kMu0);
+  p.sigma = T(seed::kCase2Sigma);
+  p.kappa_s_m = T(seed::kCase2Kappa_s_m);
+  p.chi_s_m = T(seed::kCase2Chi_s_m);
   p.sign = SignFunction::atan;
-  p.lambda_s_m = T(1e4);
+  p.lambda_s_m = T(seed::kOscSignSlope_s_m);
   return p;
 }
 
@@ -110,10 +111,10 @@ template <class T, class S>
 S friction_coefficient(const FrictionParams<T>& p, const S& speed_m_s) {
   switch (p.law) {
     case FrictionLaw::case1:
-      return S(p.a) + S(p.mu0 - p.a) * (S(1) - dm::exp(-speed_m_s / S(p.b_m_s)));
+      return S(p.a) + S(p.mu0 - p.a) * (S(1) - exp(-speed_m_s / S(p.b_m_s)));
     case FrictionLaw::case2:
-      return S(p.mu0) * (S(1) - dm::exp(-S(p.kappa_s_m) * speed_m_s)) *
-             (S(1) + S(p.sigma - T(1)) * dm::exp(-S(p.chi_s_m) * speed_m_s));
+      return S(p.mu0) * (S(1) - exp(-S(p.kappa_s_m) * speed_m_s)) *
+             (S(1) + S(p.sigma - T(1)) * exp(-S(p.chi_s_m) * speed_m_s));
     case FrictionLaw::constant:
     default:
       return S(p.mu0);
@@ -125,13 +126,13 @@ template <class T, class S>
 S friction_sign(const FrictionParams<T>& p, const S& v_m_s) {
   switch (p.sign) {
     case SignFunction::exact:
-      return dm::sign(v_m_s);
+      return sign(v_m_s);
     case SignFunction::tanh:
-      return dm::tanh(S(p.lambda_s_m) * v_m_s);
+      return tanh(S(p.lambda_s_m) * v_m_s);
     case SignFunction::atan:
     default:
-      // 2/pi written as a constant so float and fixed see the same rounding.
-      return S(T(0.63661977236758134308)) * dm::atan(S(p.lambda_s_m) * v_m_s);
+      // 2/pi as a constant, so float and fixed round it once.
+      return S(T(kTwoOverPi)) * atan(S(p.lambda_s_m) * v_m_s);
   }
 }
 
@@ -139,7 +140,7 @@ S friction_sign(const FrictionParams<T>& p, const S& v_m_s) {
 // a body sliding at v_rel against a surface is F = -phi(v_rel) * N.
 template <class T, class S>
 S friction_characteristic(const FrictionParams<T>& p, const S& v_rel_m_s) {
-  return friction_coefficient(p, dm::abs(v_rel_m_s)) * friction_sign(p, v_rel_m_s);
+  return friction_coefficient(p, abs(v_rel_m_s)) * friction_sign(p, v_rel_m_s);
 }
 
 // phi(v_rel) and d phi / d v_rel together (docs/physics.md#friction-derivative):
@@ -154,7 +155,7 @@ struct FrictionEval {
 
 template <class T>
 FrictionEval<T> friction_characteristic_and_slope(const FrictionParams<T>& p, const T& v_rel_m_s) {
-  const T speed = dm::abs(v_rel_m_s);
+  const T speed = abs(v_rel_m_s);
   const T s = friction_sign(p, v_rel_m_s);
   // ds/dv
   T ds = T(0);
@@ -168,7 +169,7 @@ FrictionEval<T> friction_characteristic_and_slope(const FrictionParams<T>& p, co
     case SignFunction::atan:
     default: {
       const T lv = p.lambda_s_m * v_rel_m_s;
-      ds = T(0.63661977236758134308) * p.lambda_s_m / (T(1) + lv * lv);
+      ds = T(kTwoOverPi) * p.lambda_s_m / (T(1) + lv * lv);
       break;
     }
   }
@@ -176,14 +177,14 @@ FrictionEval<T> friction_characteristic_and_slope(const FrictionParams<T>& p, co
   T mu = p.mu0, dmu = T(0);
   switch (p.law) {
     case FrictionLaw::case1: {
-      const T e = dm::exp(-speed / p.b_m_s);
+      const T e = exp(-speed / p.b_m_s);
       mu = p.a + (p.mu0 - p.a) * (T(1) - e);
       dmu = (p.mu0 - p.a) / p.b_m_s * e;
       break;
     }
     case FrictionLaw::case2: {
-      const T ek = dm::exp(-p.kappa_s_m * speed);
-      const T ec = dm::exp(-p.chi_s_m * speed);
+      const T ek = exp(-p.kappa_s_m * speed);
+      const T ec = exp(-p.chi_s_m * speed);
       const T g1 = T(1) - ek;
       const T g2 = T(1) + (p.sigma - T(1)) * ec;
       mu = p.mu0 * g1 * g2;
@@ -198,7 +199,7 @@ FrictionEval<T> friction_characteristic_and_slope(const FrictionParams<T>& p, co
   r.phi = mu * s;
   // d|v|/dv * s = sign(v) * s(v) = |s(v)| for an odd s. At v = 0 the |v| kink
   // of mu multiplies s(0) = 0, so the expression is exact there too.
-  r.slope = dmu * dm::abs(s) + mu * ds;
+  r.slope = dmu * abs(s) + mu * ds;
   return r;
 }
 

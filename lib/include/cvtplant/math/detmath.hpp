@@ -1,6 +1,8 @@
 #pragma once
-// Deterministic math for every scalar type of the core: cvt::dm::abs, sqrt,
-// atan, exp, tanh, sin, cos, sign for double, float and Fixed<F>.
+// Deterministic math for the scalar types of the core: abs, sqrt, atan, exp,
+// tanh, sin, cos, sign for double and float here (cvt::dm), for Fixed<F>
+// next to the type (scalar/fixed.hpp) and for dual numbers next to theirs
+// (autodiff/dual.hpp). How generic code calls them: the end of this file.
 //
 // Same input -> same bits on x86-64, aarch64 and Cortex-M (with
 // -ffp-contract=off): no libm transcendental is called; float/double use only
@@ -14,7 +16,6 @@
 // Edge rules (Fixed): saturate instead of overflowing; sqrt(x < 0) = 0.
 #include <cstdint>
 
-#include "cvtplant/math/detail/fixed_math.hpp"
 #include "cvtplant/math/detail/ieee.hpp"
 #include "cvtplant/scalar/fixed.hpp"
 
@@ -42,24 +43,19 @@ inline float sin(float x) { return detail::sin_cos_f(x, false); }
 inline float cos(float x) { return detail::sin_cos_f(x, true); }
 inline float sign(float x) { return x > 0.0f ? 1.0f : x < 0.0f ? -1.0f : x; }
 
-// ---------------------------------------------------------------- Fixed<F>
-template <int F>
-constexpr Fixed<F> abs(Fixed<F> x) { return x.raw() < 0 ? -x : x; }  // -lowest() saturates to max()
-template <int F>
-constexpr Fixed<F> sqrt(Fixed<F> x) { return detail::sqrt_fixed(x); }
-template <int F>
-constexpr Fixed<F> exp(Fixed<F> x) { return detail::exp_fixed(x); }
-template <int F>
-constexpr Fixed<F> atan(Fixed<F> x) { return detail::atan_fixed(x); }
-template <int F>
-constexpr Fixed<F> tanh(Fixed<F> x) { return detail::tanh_fixed(x); }
-template <int F>
-constexpr Fixed<F> sin(Fixed<F> x) { return detail::sin_cos_fixed(x, false); }
-template <int F>
-constexpr Fixed<F> cos(Fixed<F> x) { return detail::sin_cos_fixed(x, true); }
-template <int F>
-constexpr Fixed<F> sign(Fixed<F> x) {
-  return x.raw() > 0 ? Fixed<F>::one() : x.raw() < 0 ? -Fixed<F>::one() : Fixed<F>{};
+// ---------------------------------------------------------------- set-up only (double)
+// ln(v) for v in (0, 1e6] by Newton on exp, and asin(s) for |s| < 0.9 by
+// Newton on sin: constants computed once at set-up, deterministic because
+// they rest on exp and sin above (no libm). Far too slow for a step.
+inline double log_setup(double v) {
+  double y = 0.0;
+  for (int i = 0; i < 60; ++i) y -= 1.0 - v / exp(y);
+  return y;
+}
+inline double asin_setup(double s) {
+  double y = s;
+  for (int i = 0; i < 40; ++i) y -= (sin(y) - s) / cos(y);
+  return y;
 }
 
 // ---------------------------------------------------------------- error bounds
@@ -103,3 +99,22 @@ struct max_error<Fixed<F>> {
 };
 
 }  // namespace cvt::dm
+
+namespace cvt {
+
+// Generic code in namespace cvt calls the scalar math unqualified, exp(x):
+// for double and float these using-declarations resolve it (argument-
+// dependent lookup finds nothing for built-in types); Fixed<F> (fixed.hpp)
+// and Dual<T, N> (dual.hpp) carry their overloads next to the type, and ADL
+// finds them wherever the type is known, whatever the include order. Code
+// that knows its type may call dm::exp(x) for double/float directly.
+using dm::abs;
+using dm::atan;
+using dm::cos;
+using dm::exp;
+using dm::sign;
+using dm::sin;
+using dm::sqrt;
+using dm::tanh;
+
+}  // namespace cvt

@@ -11,6 +11,17 @@
 //
 // Templated on the scalar T and a compile-time feature mask (rom_params.hpp);
 // heap-free; inputs are a member set before each step (integrate/system.hpp).
+// This class is the plant as an integrator sees it: kinematics and contact,
+// the right-hand side and its Jacobian. The other parts are their own pieces:
+//   rom_layout.hpp     where each state sits, per feature mask
+//   rom_units.hpp      internal units (fixed-point scaling and overflow)
+//   rom_constants.hpp  the set-up constants in the plant's type and units
+//   rom_formulas.hpp   the formulas several parts share, one function each
+//   rom_outputs.hpp    what a frame reports
+//   rom_energy.hpp     stored energy, power terms and the ledger
+//   rom_watchdog.hpp   the faults and the per-state checks
+//   rom_step.hpp       the integrator step with the block-eliminated W solver
+//   rom_sim.hpp        the frame stepper (substeps, ledger, watchdog)
 #include <cstdint>
 #include <type_traits>
 
@@ -19,75 +30,17 @@
 #include "cvtplant/friction/friction_law.hpp"
 #include "cvtplant/integrate/system.hpp"
 #include "cvtplant/math/detmath.hpp"
+#include "cvtplant/plant/rom_constants.hpp"
+#include "cvtplant/plant/rom_energy.hpp"
+#include "cvtplant/plant/rom_formulas.hpp"
+#include "cvtplant/plant/rom_layout.hpp"
+#include "cvtplant/plant/rom_outputs.hpp"
 #include "cvtplant/plant/rom_params.hpp"
+#include "cvtplant/plant/rom_units.hpp"
 #include "cvtplant/scalar/fixed_eigen.hpp"
 #include "cvtplant/scalar/scalar.hpp"
 
 namespace cvt {
-
-// Internal units of the plant (docs/rom.md#fixed-point). Floating point runs
-// in SI: every factor is 1 and folds away at compile time, so float and
-// double results are those of the plain SI equations, bit for bit. Fixed point
-// measures time in units of 2^-10 s and the lump and sheave displacements in
-// 2^-10 m: the stick stiffness per time unit (1.2e4 at 3.3 kN) and the bolt
-// stiffness per length unit (1483 N) then fit q16.16, and the step is 0.512
-// units instead of 33 LSB of seconds. Velocities stay in m/s and rad/s, since
-// 2^-10 m per 2^-10 s is 1 m/s: position rows need no factor at all.
-template <class T>
-struct RomUnits {
-  static constexpr bool kScaled = false;
-  static constexpr double time_s = 1.0;    // one time unit [s]
-  static constexpr double length_m = 1.0;  // one unit of x1, x2, delta [m]
-};
-template <int FracBits>
-struct RomUnits<Fixed<FracBits>> {
-  static constexpr bool kScaled = true;
-  static constexpr double time_s = 1.0 / 1024.0;
-  static constexpr double length_m = time_s;  // = time unit x 1 m/s
-};
-
-// State layout for a feature mask (docs/rom.md#state).
-template <std::uint32_t F>
-struct RomLayout {
-  static constexpr bool kAxial = (F & rom_feature::axial) != 0;
-  static constexpr bool kRoad = (F & rom_feature::road_load) != 0;
-  static constexpr bool kDeform = (F & rom_feature::deformation) != 0;
-  static constexpr bool kPolygon = (F & rom_feature::polygon) != 0;
-  static constexpr bool kWedge = (F & rom_feature::wedging) != 0;
-  static_assert(!kWedge || kAxial, "the wedging feature needs the axial feature (docs/rom.md#wedging)");
-  static constexpr int kW1 = 0, kW2 = 1, kX1 = 2, kV1 = 3, kX2 = 4, kV2 = 5;
-  static constexpr int kFh = 6;                       // valid if kAxial
-  static constexpr int kDelta = 7, kDeltaDot = 8;     // valid if kAxial
-  static constexpr int kRho = 9, kRhoDot = 10;        // valid if kWedge
-  static constexpr int kPsi = 6 + (kAxial ? 3 : 0) + (kWedge ? 2 : 0);  // valid if kPolygon
-  static constexpr int kStates = kPsi + (kPolygon ? 1 : 0);
-  static constexpr std::uint32_t kPositionMask = (1u << kX1) | (1u << kX2) | (kAxial ? (1u << kDelta) : 0u) |
-                                                 (kWedge ? (1u << kRho) : 0u) | (kPolygon ? (1u << kPsi) : 0u);
-};
-
-// Everything a frame reports (docs/rom.md#outputs). Forces in N, torques in N m.
-template <class T>
-struct RomOutputs {
-  T omega1_rad_s{}, omega2_rad_s{};
-  T speed_ratio{};        // w1 / w2 (0 while |w2| < 1e-3 rad/s)
-  T geometric_ratio{};    // r2 / r1 (varies with wedging)
-  T radius1_m{}, radius2_m{};  // pitch radii (constant unless wedging)
-  T slip{};               // (v1 - v_c) / v1 (0 while |v1| < 1e-3 m/s)
-  T clamp_force_N{};      // F_ax acting on the lumps
-  T torque_transmitted_Nm{};  // r1e (F1 + F2): friction torque on the driver
-  T tau_in_Nm{}, tau_load_Nm{};  // as applied (held pulleys report the holding torque)
-  T friction1_N{}, friction2_N{};            // tangential friction on the lumps
-  T radial_friction1_N{}, radial_friction2_N{};  // along the flank, radial direction (wedging; seed Eq. 7 F_r)
-  T v_rel1_m_s{}, v_rel2_m_s{};
-  bool stick1 = false, stick2 = false;
-};
-
-// Instantaneous power terms [W] (docs/rom.md#energy-balance): dE/dt =
-// input + actuator - load - friction_loss - damping_loss.
-template <class A>
-struct RomPower {
-  A input_W{}, actuator_W{}, load_W{}, friction_loss_W{}, damping_loss_W{};
-};
 
 template <class T, std::uint32_t Features = 0>
 class CvtRom {
@@ -105,111 +58,11 @@ class CvtRom {
   static_assert(!L::kWedge || !U::kScaled, "the wedging feature runs in floating point only");
   using State = Eigen::Matrix<T, kStates, 1>;
   using Jacobian = Eigen::Matrix<T, kStates, kStates>;
-  // Energy bookkeeping runs in float for fixed point (energies of 1e5 J do
-  // not fit q16.16) and in the plant's own type otherwise.
-  using Acc = std::conditional_t<std::is_same_v<T, double>, double, float>;
+  using Acc = RomAcc<T>;
 
   RomInputs<T> inputs;
 
-  explicit CvtRom(const RomParams& p) : p_(p) {
-    c_.r1 = T(p.r1_m);
-    c_.r2 = T(p.r2_m);
-    c_.inv_J1 = T(1.0 / p.J1_kgm2);
-    c_.inv_J2 = T(1.0 / p.J2_kgm2);
-    c_.inv_m = T(1.0 / p.lump_mass_kg);
-    // Springs act on displacements, so they are stored per length unit.
-    c_.k1 = T(p.k1_N_m * U::length_m);
-    c_.c1 = T(p.c1_Ns_m);
-    c_.k2 = T(p.k2_N_m * U::length_m);
-    c_.c2 = T(p.c2_Ns_m);
-    c_.friction = p.friction.template cast<T>();
-    // docs/rom.md#deformation: beta_i = beta0 + Delta/2 sin(zeta_i - theta_c + pi/2),
-    // Delta, theta_c from seed Eq. 4. The lumps sit at fixed wrap angles, so
-    // 1/cos(beta_i) is a set-up constant and the feature costs nothing per step.
-    double b1 = p.beta0_rad, b2 = p.beta0_rad;
-    if constexpr (L::kDeform) {
-      const double ratio = p.r1_m / p.r2_m;
-      const double Delta = 0.00045 / dm::exp(0.55 * log_pos(ratio));
-      const double theta_c = 3.14159265358979323846 * ratio / 3.0 + 23.0 * 3.14159265358979323846 / 180.0;
-      b1 += 0.5 * Delta * dm::sin(p.zeta1_rad - theta_c + 1.57079632679489661923);
-      b2 += 0.5 * Delta * dm::sin(p.zeta2_rad - theta_c + 1.57079632679489661923);
-    }
-    c_.inv_cos1 = T(1.0 / dm::cos(b1));
-    c_.inv_cos2 = T(1.0 / dm::cos(b2));
-    c_.hold1 = p.hold_driver_speed;
-    c_.hold2 = p.hold_driven_speed;
-    c_.stick_speed = T(p.stick_speed_m_s);
-    // docs/rom.md#slope-floor: the edge of the sign's regularisation layer
-    // (none for the exact sign) and the friction slope there.
-    if (p.friction.sign != SignFunction::exact) {
-      c_.floor_speed = T(1.0 / p.friction.lambda_s_m);
-      c_.slope_floor = friction_characteristic_slope(c_.friction, c_.floor_speed);
-    }
-    c_.tu = T(U::time_s);
-    if constexpr (L::kAxial) {
-      // Per time unit in the constant (0.049 in fixed point, 3200 LSB): one
-      // rounding of (F_cmd - F_h) x constant, not a rounded rate times 50.
-      c_.inv_tau_h = T(U::time_s / p.actuator_tau_s);
-      c_.clamp_max = T(p.clamp_max_N);
-      c_.inv_ms = T(1.0 / p.sheave_mass_kg);
-      c_.cs = T(p.sheave_damping_Ns_m);
-      c_.K_ax = T(p.K_ax_N_m * U::length_m);
-    }
-    if constexpr (L::kRoad) {
-      c_.T0 = T(p.road_T0_Nm);
-      c_.cv = T(p.road_cv_Nms_rad);
-      c_.ca = T(p.road_ca_Nms2_rad2);
-      c_.inv_w_eps = T(1.0 / p.road_w_eps_rad_s);
-    }
-    if constexpr (L::kPolygon) {
-      // docs/rom.md#polygon: half the angle one link subtends on the driver.
-      c_.alpha = T(asin_small(p.pitch_m / (2.0 * p.r1_m)));
-    }
-    if constexpr (L::kWedge) {
-      // docs/rom.md#wedging: r2(rho) from chain length conservation, as the
-      // cubic through the exact solutions at rho = 0, +-e, +-2e (e = travel/2).
-      const double e = 0.5 * p.radial_travel_m;
-      const double fp1 = driven_radius_exact(p, e), fm1 = driven_radius_exact(p, -e);
-      const double fp2 = driven_radius_exact(p, 2 * e), fm2 = driven_radius_exact(p, -2 * e);
-      const double f0 = p.r2_m;
-      const double a1 = (8.0 * (fp1 - fm1) - (fp2 - fm2)) / (12.0 * e);
-      const double a2 = (16.0 * (fp1 + fm1) - (fp2 + fm2) - 30.0 * f0) / (24.0 * e * e);
-      const double a3 = ((fp2 - fm2) - 2.0 * (fp1 - fm1)) / (12.0 * e * e * e);
-      const double tb = dm::sin(p.beta0_rad) / dm::cos(p.beta0_rad);
-      c_.a1 = T(a1);
-      c_.a2 = T(a2);
-      c_.a3 = T(a3);
-      c_.two_tan_b0 = T(2.0 * tb);
-      c_.tan1 = T(dm::sin(b1) / dm::cos(b1));
-      c_.tan2 = T(dm::sin(b2) / dm::cos(b2));
-      c_.inv_mr = T(1.0 / p.radial_mass_kg);
-      c_.cr = T(p.radial_damping_Ns_m);
-      c_.driven_force = T(2.0 * tb * p.driven_clamp_N);
-      c_.travel = T(p.radial_travel_m);
-      c_.k_stop = T(p.radial_stop_N_m);
-      a_.k_stop = Acc(p.radial_stop_N_m);
-      c_.q0 = friction_characteristic_slope(c_.friction, T(0));
-      a_.mr = Acc(p.radial_mass_kg);
-      a_.cr = Acc(p.radial_damping_Ns_m);
-      a_.a1 = Acc(a1);
-      a_.a2 = Acc(a2);
-      a_.a3 = Acc(a3);
-      a_.two_tan_b0 = Acc(2.0 * tb);
-      a_.driven_force = Acc(2.0 * tb * p.driven_clamp_N);
-    }
-    // Accounting copies (docs/rom.md#energy-balance).
-    a_.J1 = Acc(p.J1_kgm2);
-    a_.J2 = Acc(p.J2_kgm2);
-    a_.m = Acc(p.lump_mass_kg);
-    a_.k1 = Acc(p.k1_N_m);
-    a_.k2 = Acc(p.k2_N_m);
-    a_.c1 = Acc(p.c1_Ns_m);
-    a_.c2 = Acc(p.c2_Ns_m);
-    a_.r2 = Acc(p.r2_m);
-    a_.ms = Acc(p.sheave_mass_kg);
-    a_.cs = Acc(p.sheave_damping_Ns_m);
-    a_.K_ax = Acc(p.K_ax_N_m);
-  }
+  explicit CvtRom(const RomParams& p) : p_(p), c_(p) {}
 
   const RomParams& params() const { return p_; }
   T polygon_half_angle_rad() const { return c_.alpha; }
@@ -312,7 +165,7 @@ class CvtRom {
   // r2(rho) - r2 and kappa(rho) = -dr2/drho (theta1/theta2 to 1e-2).
   template <class S>
   S driven_radius_change(const S& rho) const {
-    return rho * (S(c_.a1) + rho * (S(c_.a2) + rho * S(c_.a3)));
+    return cvt::driven_radius_change(rho, S(c_.a1), S(c_.a2), S(c_.a3));
   }
   template <class S>
   S ratio_slope(const S& rho) const {
@@ -322,7 +175,7 @@ class CvtRom {
   // Effective driver radius r1e: r1, or r1 cos(psi) with chordal action.
   template <class S>
   S driver_radius(const Eigen::Matrix<S, kStates, 1>& x) const {
-    if constexpr (L::kPolygon) return pitch_radius1(x) * dm::cos(x(L::kPsi));
+    if constexpr (L::kPolygon) return pitch_radius1(x) * cos(x(L::kPsi));
     return pitch_radius1(x);
   }
 
@@ -359,8 +212,8 @@ class CvtRom {
   template <class S>
   WedgeContact<S> wedge_contact(const S& vt1, const S& vt2, const S& rhod, const S& fax) const {
     WedgeContact<S> c;
-    lump_contact(vt1, rhod * S(c_.inv_cos1), fax * S(c_.inv_cos1), S(c_.tan1), c.F1, c.Fr1);
-    lump_contact(vt2, rhod * S(c_.inv_cos2), fax * S(c_.inv_cos2), S(c_.tan2), c.F2, c.Fr2);
+    lump_contact(vt1, rhod * S(c_.inv_cos1), normal_force(fax, S(c_.inv_cos1)), S(c_.tan1), c.F1, c.Fr1);
+    lump_contact(vt2, rhod * S(c_.inv_cos2), normal_force(fax, S(c_.inv_cos2)), S(c_.tan2), c.F2, c.Fr2);
     return c;
   }
 
@@ -369,7 +222,7 @@ class CvtRom {
   S load_torque(const S& w2) const {
     S tl(inputs.tau_load_Nm);
     if constexpr (L::kRoad) {
-      tl = tl + S(c_.T0) * dm::tanh(w2 * S(c_.inv_w_eps)) + S(c_.cv) * w2 + S(c_.ca) * w2 * dm::abs(w2);
+      tl = tl + S(c_.T0) * tanh(w2 * S(c_.inv_w_eps)) + S(c_.cv) * w2 + S(c_.ca) * w2 * abs(w2);
     }
     return tl;
   }
@@ -389,8 +242,8 @@ class CvtRom {
     c.r1e = driver_radius(x);
     const T v1 = c.r1e * x(L::kW1);
     const T vc = c_.r2 * x(L::kW2);
-    c.v_rel1 = (vc + x(L::kV1)) - v1;
-    c.v_rel2 = (vc + x(L::kV2)) - v1;
+    c.v_rel1 = slip_velocity<T>(vc, x(L::kV1), v1);
+    c.v_rel2 = slip_velocity<T>(vc, x(L::kV2), v1);
     c.lump1 = friction_characteristic_and_slope(c_.friction, c.v_rel1);
     c.lump2 = friction_characteristic_and_slope(c_.friction, c.v_rel2);
     return c;
@@ -404,8 +257,8 @@ class CvtRom {
       const S r1e = driver_radius(x);
       const S v1 = r1e * x(L::kW1);
       const S vc = S(c_.r2) * x(L::kW2);
-      derivative_given(x, r1e, friction_characteristic(c_.friction, S((vc + x(L::kV1)) - v1)),
-                       friction_characteristic(c_.friction, S((vc + x(L::kV2)) - v1)), dxdt);
+      derivative_given(x, r1e, friction_characteristic(c_.friction, slip_velocity<S>(vc, x(L::kV1), v1)),
+                       friction_characteristic(c_.friction, slip_velocity<S>(vc, x(L::kV2), v1)), dxdt);
     }
   }
   // The same, with the friction already evaluated at x (c = contact(x)).
@@ -439,11 +292,11 @@ class CvtRom {
     const T w1 = x(L::kW1), w2 = x(L::kW2);
     const T r1e = c.r1e;
     const T fax = clamp_force(x);
-    const T N1 = fax * c_.inv_cos1, N2 = fax * c_.inv_cos2;
+    const T N1 = normal_force(fax, c_.inv_cos1), N2 = normal_force(fax, c_.inv_cos2);
     T s1 = c.lump1.slope, s2 = c.lump2.slope;
     if (w_slope_floor) {
-      if (dm::abs(c.v_rel1) < c_.floor_speed && s1 < c_.slope_floor) s1 = c_.slope_floor;
-      if (dm::abs(c.v_rel2) < c_.floor_speed && s2 < c_.slope_floor) s2 = c_.slope_floor;
+      if (abs(c.v_rel1) < c_.floor_speed && s1 < c_.slope_floor) s1 = c_.slope_floor;
+      if (abs(c.v_rel2) < c_.floor_speed && s2 < c_.slope_floor) s2 = c_.slope_floor;
     }
     // dF_i/dv_rel_i = -phi'(v_rel) N_i, per time unit: phi' N alone (5e6
     // N s/m at 3.3 kN) would not fit q16.16, phi' per time unit does.
@@ -458,8 +311,8 @@ class CvtRom {
     if (free2) {
       T dtl = T(0);
       if constexpr (L::kRoad) {
-        const T th = dm::tanh(w2 * c_.inv_w_eps);
-        dtl = c_.T0 * (T(1) - th * th) * c_.inv_w_eps + c_.cv + (c_.ca + c_.ca) * dm::abs(w2);
+        const T th = tanh(w2 * c_.inv_w_eps);
+        dtl = c_.T0 * (T(1) - th * th) * c_.inv_w_eps + c_.cv + (c_.ca + c_.ca) * abs(w2);
       }
       rw2[L::kW2] = per_tau(-dtl * c_.inv_J2);
       rw2[L::kX1] = per_tau(c_.r2 * c_.k1 * c_.inv_J2);
@@ -487,7 +340,7 @@ class CvtRom {
     }
     T sin_psi = T(0);
     if constexpr (L::kPolygon) {
-      sin_psi = dm::sin(x(L::kPsi));
+      sin_psi = sin(x(L::kPsi));
       // dv_rel/dpsi = -dr1e/dpsi w1 = r1 sin(psi) w1
       const T dv = c_.r1 * sin_psi * w1;
       dF1[L::kPsi] = g1 * dv;
@@ -499,8 +352,8 @@ class CvtRom {
     if (free1) {
       for (int j = 0; j < kStates; ++j) J(L::kW1, j) = -r1e * (dF1[j] + dF2[j]) * c_.inv_J1;
       if constexpr (L::kPolygon) {
-        const T F1 = -c.lump1.phi * N1;
-        const T F2 = -c.lump2.phi * N2;
+        const T F1 = lump_friction(c.lump1.phi, N1);
+        const T F2 = lump_friction(c.lump2.phi, N2);
         // d(r1e)/dpsi = -r1 sin(psi)
         J(L::kW1, L::kPsi) += per_tau(c_.r1 * sin_psi * (F1 + F2) * c_.inv_J1);
       }
@@ -544,12 +397,12 @@ class CvtRom {
     const int v_col[2] = {L::kV1, L::kV2};
     const T inv_cos[2] = {c_.inv_cos1, c_.inv_cos2};
     for (int i = 0; i < 2; ++i) {
-      const T vt = (vc + x(v_col[i])) - v1;
-      if (!(dm::abs(vt) < c_.floor_speed)) continue;
+      const T vt = slip_velocity<T>(vc, x(v_col[i]), v1);
+      if (!(abs(vt) < c_.floor_speed)) continue;
       const T slope = friction_characteristic_slope(c_.friction, vt);
       if (!(slope < c_.slope_floor)) continue;
       // Extra dF_i/dv_t (negative: friction opposes slip), per time unit.
-      const T dg = -per_tau(c_.slope_floor - slope) * (fax * inv_cos[i]);
+      const T dg = -per_tau(c_.slope_floor - slope) * normal_force(fax, inv_cos[i]);
       T dv[kStates];  // d v_t,i / dx
       for (int j = 0; j < kStates; ++j) dv[j] = T(0);
       if (!c_.hold1) dv[L::kW1] = -r1e;
@@ -564,141 +417,17 @@ class CvtRom {
     }
   }
 
-  RomOutputs<T> outputs(const State& x) const {
-    RomOutputs<T> o;
-    const T w1 = x(L::kW1), w2 = x(L::kW2);
-    const T r1e = driver_radius(x);
-    const T r2 = pitch_radius2(x);
-    const T v1 = r1e * w1;
-    const T vc = r2 * w2;
-    const T fax = clamp_force(x);
-    o.omega1_rad_s = w1;
-    o.omega2_rad_s = w2;
-    o.radius1_m = pitch_radius1(x);
-    o.radius2_m = r2;
-    o.geometric_ratio = r2 / o.radius1_m;
-    const T w_tiny = T(1e-3);
-    o.speed_ratio = dm::abs(w2) < w_tiny ? T(0) : w1 / w2;
-    o.slip = dm::abs(v1) < w_tiny ? T(0) : (v1 - vc) / v1;
-    o.clamp_force_N = fax;
-    o.v_rel1_m_s = (vc + x(L::kV1)) - v1;
-    o.v_rel2_m_s = (vc + x(L::kV2)) - v1;
-    if constexpr (L::kWedge) {
-      const WedgeContact<T> c = wedge_contact(o.v_rel1_m_s, o.v_rel2_m_s, x(L::kRhoDot), fax);
-      o.friction1_N = c.F1;
-      o.friction2_N = c.F2;
-      o.radial_friction1_N = c.Fr1;
-      o.radial_friction2_N = c.Fr2;
-    } else {
-      o.friction1_N = -friction_characteristic(c_.friction, o.v_rel1_m_s) * (fax * c_.inv_cos1);
-      o.friction2_N = -friction_characteristic(c_.friction, o.v_rel2_m_s) * (fax * c_.inv_cos2);
-    }
-    o.torque_transmitted_Nm = r1e * (o.friction1_N + o.friction2_N);
-    o.tau_in_Nm = c_.hold1 ? o.torque_transmitted_Nm : inputs.tau_in_Nm;
-    const T strand = c_.k1 * x(L::kX1) + c_.c1 * x(L::kV1) + (c_.k1 * x(L::kX2) + c_.c1 * x(L::kV2));
-    o.tau_load_Nm = c_.hold2 ? r2 * strand : load_torque(w2);
-    o.stick1 = dm::abs(o.v_rel1_m_s) < c_.stick_speed;
-    o.stick2 = dm::abs(o.v_rel2_m_s) < c_.stick_speed;
-    return o;
-  }
+  // What a frame reports (rom_outputs.hpp) and the energy terms (rom_energy.hpp).
+  RomOutputs<T> outputs(const State& x) const { return rom_outputs(*this, x); }
+  Acc stored_energy(const State& x) const { return rom_stored_energy(*this, x); }
+  RomPower<Acc> power(const State& x) const { return rom_power(*this, x); }
+  // The same, with the friction already evaluated at x (c = contact(x)).
+  RomPower<Acc> power(const State& x, const Contact& c) const { return rom_power(*this, x, c); }
 
-  // Stored energy [J] (docs/rom.md#energy-balance), in the accounting type.
-  Acc stored_energy(const State& xs) const {
-    Acc x[kStates];
-    for (int i = 0; i < kStates; ++i) x[i] = to_acc(xs(i));
-    if constexpr (U::kScaled) {
-      // Displacements back to metres: energies of 1e5 J are only kept in float.
-      x[L::kX1] *= Acc(U::length_m);
-      x[L::kX2] *= Acc(U::length_m);
-      if constexpr (L::kAxial) x[L::kDelta] *= Acc(U::length_m);
-    }
-    const Acc w1 = x[L::kW1], w2 = x[L::kW2];
-    Acc r2 = a_.r2;
-    Acc dr2 = Acc(0);
-    if constexpr (L::kWedge) {
-      const Acc rho = x[L::kRho];
-      dr2 = rho * (a_.a1 + rho * (a_.a2 + rho * a_.a3));
-      r2 += dr2;
-    }
-    const Acc vc = r2 * w2;
-    const Acc u1 = vc + x[L::kV1], u2 = vc + x[L::kV2];
-    const Acc dx = x[L::kX1] - x[L::kX2];
-    Acc e = Acc(0.5) * (a_.J1 * w1 * w1 + a_.J2 * w2 * w2 + a_.m * (u1 * u1 + u2 * u2) +
-                        a_.k1 * (x[L::kX1] * x[L::kX1] + x[L::kX2] * x[L::kX2]) + a_.k2 * dx * dx);
-    if constexpr (L::kAxial) {
-      Acc b = x[L::kDelta];
-      if constexpr (L::kWedge) b -= a_.two_tan_b0 * x[L::kRho];
-      const Acc d = b > Acc(0) ? b : Acc(0);
-      e += Acc(0.5) * (a_.ms * x[L::kDeltaDot] * x[L::kDeltaDot] + a_.K_ax * d * d);
-    }
-    if constexpr (L::kWedge) {
-      // Radial kinetic energy and the potential of the (constant) driven
-      // clamping force through chain length conservation.
-      const Acc pen = to_acc(stop_penetration(xs(L::kRho)));
-      e += Acc(0.5) * a_.mr * x[L::kRhoDot] * x[L::kRhoDot] - a_.driven_force * dr2 +
-           Acc(0.5) * a_.k_stop * pen * pen;
-    }
-    return e;
-  }
-
-  // Power terms at state x with the current inputs (docs/rom.md#energy-balance).
-  RomPower<Acc> power(const State& xs) const {
-    if constexpr (L::kWedge) {
-      const RomOutputs<T> o = outputs(xs);
-      RomPower<Acc> pw = power_given(xs, o.tau_in_Nm, o.tau_load_Nm, o.friction1_N, o.friction2_N, o.v_rel1_m_s,
-                                     o.v_rel2_m_s);
-      // Radial slip along the flank is rhodot / cos(beta_i).
-      const Acc rd = to_acc(xs(L::kRhoDot));
-      pw.friction_loss_W -= to_acc(o.radial_friction1_N) * rd * to_acc(c_.inv_cos1) +
-                            to_acc(o.radial_friction2_N) * rd * to_acc(c_.inv_cos2);
-      pw.damping_loss_W += a_.cr * rd * rd;
-      return pw;
-    } else {
-      return power(xs, contact(xs));
-    }
-  }
-  // The same, with the friction already evaluated at x (c = contact(x)); the
-  // forces and torques as outputs() computes them.
-  RomPower<Acc> power(const State& xs, const Contact& c) const {
-    const T fax = clamp_force(xs);
-    const T F1 = -c.lump1.phi * (fax * c_.inv_cos1);
-    const T F2 = -c.lump2.phi * (fax * c_.inv_cos2);
-    const T tau_in = c_.hold1 ? c.r1e * (F1 + F2) : inputs.tau_in_Nm;
-    T tau_load;
-    if (c_.hold2) {
-      const T strand = c_.k1 * xs(L::kX1) + c_.c1 * xs(L::kV1) + (c_.k1 * xs(L::kX2) + c_.c1 * xs(L::kV2));
-      tau_load = c_.r2 * strand;
-    } else {
-      tau_load = load_torque(xs(L::kW2));
-    }
-    return power_given(xs, tau_in, tau_load, F1, F2, c.v_rel1, c.v_rel2);
-  }
-
-  static Acc to_acc(const T& v) {
-    if constexpr (std::is_floating_point_v<T>) return static_cast<Acc>(v);
-    else return v.to_float();
-  }
+  // The constants in the plant's scalar type and units (rom_constants.hpp).
+  const RomConstants<T, Features>& constants() const { return c_; }
 
  private:
-  // The power terms common to every feature set, from the applied torques and
-  // the tangential friction forces (docs/rom.md#energy-balance).
-  RomPower<Acc> power_given(const State& xs, const T& tau_in, const T& tau_load, const T& F1, const T& F2,
-                            const T& vr1, const T& vr2) const {
-    Acc x[kStates];
-    for (int i = 0; i < kStates; ++i) x[i] = to_acc(xs(i));
-    RomPower<Acc> pw;
-    pw.input_W = to_acc(tau_in) * x[L::kW1];
-    pw.load_W = to_acc(tau_load) * x[L::kW2];
-    pw.friction_loss_W = -(to_acc(F1) * to_acc(vr1) + to_acc(F2) * to_acc(vr2));
-    const Acc dv = x[L::kV1] - x[L::kV2];
-    pw.damping_loss_W = a_.c1 * (x[L::kV1] * x[L::kV1] + x[L::kV2] * x[L::kV2]) + a_.c2 * dv * dv;
-    if constexpr (L::kAxial) {
-      pw.actuator_W = x[L::kFh] * x[L::kDeltaDot];
-      pw.damping_loss_W += a_.cs * x[L::kDeltaDot] * x[L::kDeltaDot];
-    }
-    return pw;
-  }
-
   // derivative() without wedging, given the effective driver radius and the
   // friction characteristic phi_i of each lump at x.
   template <class S>
@@ -706,8 +435,8 @@ class CvtRom {
                         Eigen::Matrix<S, kStates, 1>& dxdt) const {
     const S fax = clamp_force(x);
     // Friction grouping as in StickSlipOscillator (docs/rom.md#holds).
-    const S F1 = -phi1 * (fax * S(c_.inv_cos1));
-    const S F2 = -phi2 * (fax * S(c_.inv_cos2));
+    const S F1 = lump_friction(phi1, normal_force(fax, S(c_.inv_cos1)));
+    const S F2 = lump_friction(phi2, normal_force(fax, S(c_.inv_cos2)));
     drive_train_rows(x, r1e, S(c_.r2), F1, F2, fax, dxdt);
   }
 
@@ -722,12 +451,13 @@ class CvtRom {
     // Spring groupings match StickSlipOscillator so that the held-pulley
     // scene reproduces seed Eq. 9 to the last bit (docs/rom.md#holds).
     const S mid = S(c_.k2) * (x1 - x2) + S(c_.c2) * (xd1 - xd2);
-    const S strand1 = S(c_.k1) * x1 + S(c_.c1) * xd1;
-    const S strand2 = S(c_.k1) * x2 + S(c_.c1) * xd2;
+    const S strand1 = strand_force(S(c_.k1), S(c_.c1), x1, xd1);
+    const S strand2 = strand_force(S(c_.k1), S(c_.c1), x2, xd2);
     // Rates per time unit (per_tau; docs/rom.md#fixed-point). Displacement
     // rows need no factor: length unit / time unit = 1 m/s.
-    const S w1dot = c_.hold1 ? S(T(0)) : per_tau((S(inputs.tau_in_Nm) - r1e * (F1 + F2)) * S(c_.inv_J1));
-    const S w2dot = c_.hold2 ? S(T(0)) : per_tau((r2 * (strand1 + strand2) - load_torque(w2)) * S(c_.inv_J2));
+    const S w1dot = c_.hold1 ? S(T(0)) : per_tau((S(inputs.tau_in_Nm) - friction_torque(r1e, F1, F2)) * S(c_.inv_J1));
+    const S w2dot =
+        c_.hold2 ? S(T(0)) : per_tau((strand_torque(r2, strand1, strand2) - load_torque(w2)) * S(c_.inv_J2));
     S chain_acc = r2 * w2dot;
     // d(v_c)/dt = r2 w2' + r2' w2, r2' = -kappa(rho) rhodot (floating point only).
     if constexpr (L::kWedge) chain_acc = chain_acc - ratio_slope(x(L::kRho)) * x(L::kRhoDot) * w2;
@@ -755,7 +485,7 @@ class CvtRom {
     // phi(|v|)/|v|; its limit phi'(0) at |v| = 0, where sqrt has no derivative.
     S q(c_.q0);
     if (s2 > S(T(1e-24))) {
-      const S speed = dm::sqrt(s2);
+      const S speed = sqrt(s2);
       q = friction_characteristic(c_.friction, speed) / speed;
     }
     // seed Eq. 7 solved for N: N (1 + tan(beta) q gr) = F_ax / cos(beta).
@@ -775,7 +505,8 @@ class CvtRom {
     const S v1 = r1e * x(L::kW1);
     const S vc = r2 * x(L::kW2);
     const S fax = clamp_force(x);
-    const WedgeContact<S> c = wedge_contact(S((vc + x(L::kV1)) - v1), S((vc + x(L::kV2)) - v1), rhod, fax);
+    const WedgeContact<S> c =
+        wedge_contact(slip_velocity<S>(vc, x(L::kV1), v1), slip_velocity<S>(vc, x(L::kV2), v1), rhod, fax);
     drive_train_rows(x, r1e, r2, c.F1, c.F2, fax, dxdt);
     // m_r rho'' = 2 tan(beta0) F_b + sum F_r,i / cos(beta_i) - kappa(rho) 2 tan(beta0) F_ax2 - c_r rho' - F_stop
     dxdt(L::kRho) = rhod;
@@ -785,54 +516,8 @@ class CvtRom {
                        S(c_.inv_mr);
   }
 
-  // Set-up helpers in double (never per step).
-  static double log_pos(double v) {
-    // ln(v) for v in (0, 1e6] by Newton on exp: set-up only, avoids <cmath>
-    // so the determinism of the constants rests on dm::exp alone.
-    double y = 0.0;
-    for (int i = 0; i < 60; ++i) y -= 1.0 - v / dm::exp(y);
-    return y;
-  }
-  // Driven pitch radius that keeps the chain length of the set-up radii when
-  // the driver radius is r1 + rho (set-up only): Newton on
-  // L = r1 theta1 + r2 theta2 + 2 sqrt(C^2 - (r2 - r1)^2), dL/dr2 = theta2.
-  static double driven_radius_exact(const RomParams& p, double rho) {
-    const double pi = 3.14159265358979323846, C = p.center_distance_m;
-    auto length = [&](double a, double b) {
-      const double s = asin_small((b - a) / C);
-      return a * (pi - 2.0 * s) + b * (pi + 2.0 * s) + 2.0 * dm::sqrt(C * C - (b - a) * (b - a));
-    };
-    const double L0 = length(p.r1_m, p.r2_m), a = p.r1_m + rho;
-    double b = p.r2_m;
-    for (int i = 0; i < 30; ++i) b -= (length(a, b) - L0) / (pi + 2.0 * asin_small((b - a) / C));
-    return b;
-  }
-  static double asin_small(double s) {
-    // asin by Newton on sin, |s| < 0.9 (set-up only).
-    double y = s;
-    for (int i = 0; i < 40; ++i) y -= (dm::sin(y) - s) / dm::cos(y);
-    return y;
-  }
-
-  struct Consts {
-    T r1{}, r2{}, inv_J1{}, inv_J2{}, inv_m{}, k1{}, c1{}, k2{}, c2{};
-    FrictionParams<T> friction{};
-    T inv_cos1{}, inv_cos2{}, stick_speed{};
-    T tu{};  // one time unit [s] (RomUnits)
-    bool hold1 = false, hold2 = false;
-    T inv_tau_h{}, clamp_max{}, inv_ms{}, cs{}, K_ax{};
-    T T0{}, cv{}, ca{}, inv_w_eps{};
-    T alpha{};
-    T a1{}, a2{}, a3{}, two_tan_b0{}, tan1{}, tan2{}, inv_mr{}, cr{}, driven_force{}, travel{}, k_stop{}, q0{};
-    T floor_speed{}, slope_floor{};  // docs/rom.md#slope-floor
-  };
-  struct AccConsts {
-    Acc J1{}, J2{}, m{}, k1{}, k2{}, c1{}, c2{}, r2{}, ms{}, cs{}, K_ax{};
-    Acc mr{}, cr{}, a1{}, a2{}, a3{}, two_tan_b0{}, driven_force{}, k_stop{};
-  };
   RomParams p_;
-  Consts c_;
-  AccConsts a_;
+  RomConstants<T, Features> c_;
 };
 
 }  // namespace cvt

@@ -12,16 +12,18 @@
 
 #include "cvtplant/friction/friction_law.hpp"
 #include "cvtplant/integrate/system.hpp"
+#include "cvtplant/physics/seed.hpp"
 
 namespace cvt {
 
 template <class T>
 struct OscillatorParams {
-  T m1_kg = T(1), m2_kg = T(1);
-  T k1_N_m = T(25), k2_N_m = T(25);
-  T c1_Ns_m = T(1), c2_Ns_m = T(1);
-  T belt_speed_m_s = T(3.5);
-  T g_m_s2 = T(9.81);
+  // Seed section 3 (physics/seed.hpp).
+  T m1_kg = T(seed::kOscMass_kg), m2_kg = T(seed::kOscMass_kg);
+  T k1_N_m = T(seed::kOscStiffness_N_m), k2_N_m = T(seed::kOscStiffness_N_m);
+  T c1_Ns_m = T(seed::kOscDamping_Ns_m), c2_Ns_m = T(seed::kOscDamping_Ns_m);
+  T belt_speed_m_s = T(seed::kOscBeltSpeed_m_s);
+  T g_m_s2 = T(kGravity_m_s2);
   FrictionParams<T> friction = friction_presets::oscillator_coulomb<T>();
 
   // The seed's section-3 parameter set with the given friction law.

@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "cvtplant/friction/friction_law.hpp"
+#include "cvtplant/physics/seed.hpp"
 
 namespace cvt {
 
@@ -22,14 +23,14 @@ inline constexpr std::uint32_t all = basic | wedging;
 }  // namespace rom_feature
 
 struct RomParams {
-  // Geometry (seed Table 1 / section 4).
-  double r1_m = 0.0762;            // driver pitch radius
-  double r2_m = 0.1143;            // driven pitch radius
-  double beta0_rad = 0.26179938779914943;  // 15 deg half sheave angle
-  double center_distance_m = 0.5;
+  // Geometry (seed Table 1 / section 4; physics/seed.hpp).
+  double r1_m = seed::kDriverPitchRadius_m;
+  double r2_m = seed::kDrivenPitchRadius_m;
+  double beta0_rad = seed::kHalfSheaveAngle_rad;  // 15 deg half sheave angle
+  double center_distance_m = seed::kCenterDistance_m;
   // Pulley inertias (seed Table 1).
-  double J1_kgm2 = 1.4516;
-  double J2_kgm2 = 3.2661;
+  double J1_kgm2 = seed::kDriverInertia_kgm2;
+  double J2_kgm2 = seed::kDrivenInertia_kgm2;
   // Link lumps (docs/rom.md#lumped-parameters: derived from Table 1).
   double lump_mass_kg = 0.42705977341642810;   // (n_w/2) * 0.1125 kg
   double k1_N_m = 2707.8729961981267;          // k / (2 n_s): two lumps in parallel = the free strand
@@ -62,7 +63,7 @@ struct RomParams {
   double zeta2_rad = 2.2417835874878113;   // 3 theta1/4
 
   // feature: polygon (docs/rom.md#polygon)
-  double pitch_m = 0.03;               // link length L
+  double pitch_m = seed::kLinkLength_m;  // link length L
 
   // feature: wedging (docs/rom.md#wedging). Needs axial: the bolt force then
   // also depends on the chain's radial position.

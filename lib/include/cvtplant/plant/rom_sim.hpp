@@ -9,48 +9,11 @@
 
 #include "cvtplant/integrate/method.hpp"
 #include "cvtplant/plant/cvt_rom.hpp"
+#include "cvtplant/plant/rom_energy.hpp"
 #include "cvtplant/plant/rom_step.hpp"
+#include "cvtplant/plant/rom_watchdog.hpp"
 
 namespace cvt {
-
-enum class RomFault : std::uint8_t {
-  none = 0,
-  input_non_finite,   // an input was NaN/inf: the frame was not integrated
-  state_non_finite,   // the step produced NaN/inf (floating point)
-  state_saturated,    // a state hit the rail of the fixed-point range
-  energy_growth,      // stored energy exceeds what the inputs supplied (docs/rom.md#watchdog)
-  radius_out_of_range,  // wedging: the chain left the pulleys' radial travel (docs/rom.md#wedging)
-};
-
-inline constexpr const char* rom_fault_name(RomFault f) {
-  switch (f) {
-    case RomFault::none: return "none";
-    case RomFault::input_non_finite: return "input-non-finite";
-    case RomFault::state_non_finite: return "state-non-finite";
-    case RomFault::state_saturated: return "state-saturated";
-    case RomFault::radius_out_of_range: return "radius-out-of-range";
-    case RomFault::energy_growth: return "energy-growth";
-  }
-  return "?";
-}
-
-// Work done since reset [J]; all losses counted positive.
-template <class A>
-struct EnergyLedger {
-  A stored0_J{}, stored_J{};
-  A input_J{}, actuator_J{}, load_J{}, friction_loss_J{}, damping_loss_J{};
-  // E - E0 - (W_in + W_act - W_load - W_fric - W_damp): zero for the exact
-  // solution; positive = energy the inputs cannot explain.
-  A residual_J() const {
-    return (stored_J - stored0_J) - (input_J + actuator_J - load_J - friction_loss_J - damping_loss_J);
-  }
-  // The size of the energy flows, to make the residual relative.
-  A scale_J() const {
-    auto a = [](A v) { return v < A(0) ? -v : v; };
-    return a(stored0_J) + a(stored_J) + a(input_J) + a(actuator_J) + a(load_J) + a(friction_loss_J) +
-           a(damping_loss_J);
-  }
-};
 
 struct RomSimConfig {
   Method method = Method::ros2;
@@ -68,6 +31,7 @@ struct RomSimConfig {
 template <class T, std::uint32_t Features = 0>
 class RomSimulator {
  public:
+  using Scalar = T;
   using Plant = CvtRom<T, Features>;
   using State = typename Plant::State;
   using Acc = typename Plant::Acc;
@@ -99,7 +63,7 @@ class RomSimulator {
   // (latched) fault state; a faulted simulator keeps its last good state.
   RomFault step_frame(const RomInputs<T>& u) {
     if (fault_ != RomFault::none) return fault_;
-    if (!finite(u.tau_in_Nm) || !finite(u.tau_load_Nm) || !finite(u.clamp_N)) {
+    if (!rom_finite(u.tau_in_Nm) || !rom_finite(u.tau_load_Nm) || !rom_finite(u.clamp_N)) {
       fault_ = RomFault::input_non_finite;
       return fault_;
     }
@@ -113,7 +77,7 @@ class RomSimulator {
     for (int i = 0; i < n; ++i) {
       advance_substep();
       plant_.wrap(x_);
-      RomFault f = check_state(x_);
+      RomFault f = rom_state_fault(x_);
       if (f == RomFault::none && !plant_.radius_in_range(x_)) f = RomFault::radius_out_of_range;
       if (f != RomFault::none) {
         x_ = x_prev;
@@ -162,6 +126,9 @@ class RomSimulator {
     return x_;
   }
   const Plant& plant() const { return plant_; }
+  // The plant, for callers that evaluate it on states of their own (the
+  // analysis toolkit); the inputs set here hold until the next frame.
+  Plant& mutable_plant() { return plant_; }
   const EnergyLedger<Acc>& energy() const { return ledger_; }
   RomFault fault() const { return fault_; }
   long frames() const { return frames_; }
@@ -190,26 +157,6 @@ class RomSimulator {
       }
     }
     rom_step(cfg_.method, plant_, x_, h_, cfg_.w_slope_floor);
-  }
-
-  static bool finite(const T& v) {
-    if constexpr (std::is_floating_point_v<T>) {
-      return v == v && v - v == v - v;  // NaN fails the first, +-inf the second
-    } else {
-      (void)v;
-      return true;  // fixed point has no NaN/inf
-    }
-  }
-
-  static RomFault check_state(const State& x) {
-    for (int i = 0; i < Plant::kStates; ++i) {
-      if constexpr (std::is_floating_point_v<T>) {
-        if (!finite(x(i))) return RomFault::state_non_finite;
-      } else {
-        if (x(i) == T::max() || x(i) == T::lowest()) return RomFault::state_saturated;
-      }
-    }
-    return RomFault::none;
   }
 
   Plant plant_;

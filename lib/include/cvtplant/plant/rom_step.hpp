@@ -1,9 +1,10 @@
 #pragma once
-// The linearly implicit methods (ROS2, linearly implicit Euler) for the
-// reduced-order plant with the solve of W = I - a J done by block
-// elimination instead of a dense LU (docs/rom.md#structured-solve). Same
-// method, same W, same stages as integrate/rosenbrock.hpp; only the order of
-// the arithmetic of the linear solve differs, so results agree to rounding.
+// The linearly implicit methods (ROS2, linearly implicit Euler) of
+// integrate/rosenbrock.hpp for the reduced-order plant, with the solve of
+// W = I - a J done by block elimination instead of a dense LU
+// (docs/rom.md#structured-solve): the same steps with another W solver; only
+// the order of the arithmetic of the linear solve differs, so results agree
+// with the dense LU to rounding.
 // A dense 9x9 LU is most of a frame on a Cortex-M4F; the elimination leaves
 // a 4x4 LU (the two pulley speeds and the two lump velocities), written out.
 //
@@ -154,29 +155,16 @@ void rom_step_implicit(Method m, const CvtRom<T, F>& sys, typename CvtRom<T, F>:
   RomWSolver<T, F> w;
   typename Plant::State f;
   sys.derivative(x, c, f);
-  if (m == Method::linear_implicit_euler) {
-    // (I - h J) k = f(x), x+ = x + h k
-    w.factor(J, h);
-    x += h * w.solve(f);
-    return;
-  }
-  // ROS2 (docs/numerics.md#rosenbrock), gamma = 1 + 1/sqrt(2).
-  const T gamma = T(1.70710678118654752440);
-  w.factor(J, gamma * h);
-  const typename Plant::State k1 = w.solve(f);
-  const typename Plant::State x1 = x + h * k1;
-  sys.derivative(x1, f);
-  f -= T(2) * k1;
-  const typename Plant::State k2 = w.solve(f);
-  x += (h * T(1.5)) * k1 + (h * T(0.5)) * k2;
+  if (m == Method::linear_implicit_euler) step_linear_implicit_euler_with(sys, x, h, J, w, f);
+  else step_ros2_with(sys, x, h, J, w, f);
 }
 
 // One step of `m` on the plant: ROS2 and linearly implicit Euler through
 // RomWSolver, the explicit methods through the generic integrators;
 // `w_slope_floor` as for rom_step_implicit (for the implicit methods). The
 // dense Rosenbrock code is instantiated only for the wedging plants (whose
-// axial rows couple to the rest): with 64 plant types in the CLI, its Eigen
-// LUs were most of the compile time.
+// axial rows couple to the rest): with 64 plant types compiled for the host
+// tools, its Eigen LUs would be most of their compile time.
 template <class T, std::uint32_t F>
 void rom_step(Method m, const CvtRom<T, F>& sys, typename CvtRom<T, F>::State& x, const T& h,
               bool w_slope_floor = false) {

@@ -229,3 +229,34 @@ class Fixed {
 using q16_16 = Fixed<16>;
 
 }  // namespace cvt
+
+// The math of Fixed<F> sits next to the type, found by argument-dependent
+// lookup wherever a Fixed<F> is used (docs/numerics.md#scalar-math): integer
+// kernels only, each correctly rounded to within 0.5001 LSB
+// (dm::max_error<Fixed<F>>), saturating at lowest()/max() instead of
+// overflowing. Domain rules: sqrt(x < 0) = 0; exp saturates to max() above
+// ln(max()) and rounds to 0 below -64; sign(0) = 0.
+#include "cvtplant/math/detail/fixed_math.hpp"
+
+namespace cvt {
+
+template <int F>
+constexpr Fixed<F> abs(Fixed<F> x) { return x.raw() < 0 ? -x : x; }  // -lowest() saturates to max()
+template <int F>
+constexpr Fixed<F> sqrt(Fixed<F> x) { return dm::detail::sqrt_fixed(x); }
+template <int F>
+constexpr Fixed<F> exp(Fixed<F> x) { return dm::detail::exp_fixed(x); }
+template <int F>
+constexpr Fixed<F> atan(Fixed<F> x) { return dm::detail::atan_fixed(x); }
+template <int F>
+constexpr Fixed<F> tanh(Fixed<F> x) { return dm::detail::tanh_fixed(x); }
+template <int F>
+constexpr Fixed<F> sin(Fixed<F> x) { return dm::detail::sin_cos_fixed(x, false); }
+template <int F>
+constexpr Fixed<F> cos(Fixed<F> x) { return dm::detail::sin_cos_fixed(x, true); }
+template <int F>
+constexpr Fixed<F> sign(Fixed<F> x) {
+  return x.raw() > 0 ? Fixed<F>::one() : x.raw() < 0 ? -Fixed<F>::one() : Fixed<F>{};
+}
+
+}  // namespace cvt

@@ -14,11 +14,7 @@
 
 namespace cvt {
 
-// Found by ADL from Eigen's numext:: helpers.
-template <int F>
-constexpr Fixed<F> abs(Fixed<F> x) { return dm::abs(x); }
-template <int F>
-constexpr Fixed<F> sqrt(Fixed<F> x) { return dm::sqrt(x); }
+// Found by ADL from Eigen's numext:: helpers (abs and sqrt are fixed.hpp's).
 template <int F>
 constexpr Fixed<F> abs2(Fixed<F> x) { return x * x; }
 template <int F>

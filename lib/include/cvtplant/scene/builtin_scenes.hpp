@@ -23,18 +23,18 @@ constexpr Scene oscillator(const char* name, const char* summary, const Friction
   s.params.beta0_rad = 0.0;
   s.params.J1_kgm2 = 1.0;
   s.params.J2_kgm2 = 1.0;
-  s.params.lump_mass_kg = 1.0;
-  s.params.k1_N_m = 25.0;
-  s.params.k2_N_m = 25.0;
-  s.params.c1_Ns_m = 1.0;
-  s.params.c2_Ns_m = 1.0;
+  s.params.lump_mass_kg = seed::kOscMass_kg;
+  s.params.k1_N_m = seed::kOscStiffness_N_m;
+  s.params.k2_N_m = seed::kOscStiffness_N_m;
+  s.params.c1_Ns_m = seed::kOscDamping_Ns_m;
+  s.params.c2_Ns_m = seed::kOscDamping_Ns_m;
   s.params.friction = f;
   s.params.hold_driver_speed = true;
   s.params.hold_driven_speed = true;
-  s.initial.omega1_rad_s = 3.5;
+  s.initial.omega1_rad_s = seed::kOscBeltSpeed_m_s;  // r1 = 1 m
   s.initial.xd1_m_s = 3.0;  // seed start [x1 v1 x2 v2] = [0 3 0 6]
   s.initial.xd2_m_s = 6.0;
-  s.clamp = constant_profile(1.0 * 9.81);  // m g
+  s.clamp = constant_profile(seed::kOscMass_kg * kGravity_m_s2);  // m g
   s.t_end_s = t_end;
   s.log = rom_log::friction | rom_log::energy | rom_log::states;
   return s;
@@ -48,8 +48,8 @@ constexpr Scene seed_case(const char* name, const char* summary, const FrictionP
   s.summary = summary;
   s.features = rom_feature::axial;
   s.params.friction = f;
-  s.tau_in = constant_profile(100.0);
-  s.tau_load = constant_profile(50.0);
+  s.tau_in = constant_profile(seed::kInputTorque_Nm);
+  s.tau_load = constant_profile(seed::kLoadTorque_Nm);
   s.clamp = constant_profile(3300.0);
   s.t_end_s = 10.0;
   return s;

@@ -7,6 +7,7 @@
 
 #include "cvtplant/integrate/method.hpp"
 #include "cvtplant/math/detmath.hpp"
+#include "cvtplant/physics/seed.hpp"
 #include "cvtplant/plant/rom_params.hpp"
 
 namespace cvt {
@@ -39,7 +40,7 @@ struct Profile {
         return value + (value2 - value) * ((t - t0_s) / (t1_s - t0_s));
       case ProfileKind::sine:
         if (t < t0_s) return value;
-        return value + amplitude * dm::sin(6.28318530717958647692 * freq_hz * (t - t0_s));
+        return value + amplitude * dm::sin(kTwoPi * freq_hz * (t - t0_s));
       case ProfileKind::table: {
         if (n <= 0) return 0.0;
         if (t <= t_s[0]) return v[0];

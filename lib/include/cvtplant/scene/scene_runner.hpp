@@ -26,29 +26,37 @@ RomInputs<T> scene_inputs_at(const Scene& s, double t) {
 }
 
 // Number of frames of a scene: t_end rounded to whole frames.
-inline long scene_frames(const Scene& s) {
-  const double n = s.t_end_s / s.frame_s;
-  return static_cast<long>(n + 0.5);
+inline long scene_frames(const Scene& s) { return static_cast<long>(s.t_end_s / s.frame_s + 0.5); }
+
+// Runs a scene on a simulator built with the scene's parameters: a
+// RomSimulator<T, F> or the size-erased IRomSimulator<T> of a SceneSimulator
+// (scene/plant_set.hpp). Resets it to the scene's start, then
+// on_frame(long frame, double t_s, const Sim&) -> bool after every frame
+// and at t = 0 (false stops the run). Returns the fault state at the end.
+template <class Sim, class OnFrame>
+RomFault run_frames(Sim& sim, const Scene& s, double frame_s, OnFrame&& on_frame) {
+  using T = typename Sim::Scalar;
+  const Sim& view = sim;
+  sim.reset(s.initial, scene_inputs_at<T>(s, 0.0));
+  if (!on_frame(0L, 0.0, view)) return sim.fault();
+  const long n = static_cast<long>(s.t_end_s / frame_s + 0.5);
+  for (long i = 0; i < n; ++i) {
+    // Inputs sampled at the start of the frame and held (zero-order hold).
+    const double t0 = static_cast<double>(i) * frame_s;
+    if (sim.step_frame(scene_inputs_at<T>(s, t0)) != RomFault::none) {
+      on_frame(i + 1, t0 + frame_s, view);
+      return sim.fault();
+    }
+    if (!on_frame(i + 1, static_cast<double>(i + 1) * frame_s, view)) break;
+  }
+  return sim.fault();
 }
 
-// on_frame(long frame, double t_s, const RomSimulator<T, F>&) -> bool
-// (false stops the run). Returns the fault state at the end.
+// The same with the plant of a compile-time feature mask F.
 template <class T, std::uint32_t F, class OnFrame>
 RomFault run_scene(const Scene& s, const RomSimConfig& cfg, OnFrame&& on_frame) {
   RomSimulator<T, F> sim(s.params, cfg);
-  sim.reset(s.initial, scene_inputs_at<T>(s, 0.0));
-  if (!on_frame(0L, 0.0, sim)) return sim.fault();
-  const long n = static_cast<long>(s.t_end_s / cfg.frame_s + 0.5);
-  for (long i = 0; i < n; ++i) {
-    // Inputs sampled at the start of the frame and held (zero-order hold).
-    const double t0 = static_cast<double>(i) * cfg.frame_s;
-    if (sim.step_frame(scene_inputs_at<T>(s, t0)) != RomFault::none) {
-      on_frame(i + 1, t0 + cfg.frame_s, sim);
-      return sim.fault();
-    }
-    if (!on_frame(i + 1, static_cast<double>(i + 1) * cfg.frame_s, sim)) break;
-  }
-  return sim.fault();
+  return run_frames(sim, s, cfg.frame_s, on_frame);
 }
 
 }  // namespace cvt

@@ -1,5 +1,5 @@
 #pragma once
-// Fixed<F> kernels of cvt::dm: pure integer arithmetic (docs/numerics.md#detmath).
+// Fixed<F> kernels of the deterministic math: pure integer arithmetic (docs/numerics.md#detmath).
 // Internals run in Q60/Q61 (value * 2^60 in int64) with 64x64->128 products,
 // so what reaches the Q(F) result is its final rounding plus internal error
 // of order 2^-55: results are within 0.5 LSB plus a small fraction of an LSB.
@@ -7,7 +7,9 @@
 
 #include "cvtplant/math/detail/coeffs.hpp"
 #include "cvtplant/math/detail/wide_int.hpp"
-#include "cvtplant/scalar/fixed.hpp"
+
+// Included by scalar/fixed.hpp only, once Fixed<F> is complete: the math
+// overloads of Fixed<F> stand next to the type (found by ADL) and call these.
 
 namespace cvt::dm::detail {
 

@@ -1,0 +1,38 @@
+#pragma once
+// The seed's kinds of figures as PNG (docs/analysis.md#figures), drawn by
+// gnuplot (Debian gnuplot-nox, pngcairo terminal) from data files written next
+// to the images; recurrence plots are written directly with libpng.
+#include <string>
+#include <vector>
+
+#include "cvtplant/analysis/systems.hpp"
+
+namespace cvt::analysis {
+
+// Time history, delay reconstruction, AMI, FNN, Cao, divergence curve with
+// the fitted scaling region, recurrence plot. tau/m <= 0: chosen as in
+// classify. Returns the PNG paths written.
+std::vector<std::string> series_figures(const std::vector<double>& x, double dt, const std::string& label,
+                                        const std::string& out_dir, int tau = -1, int m = -1);
+
+// Time history of a whole sampled run (t = i dt) with the first `discard`
+// samples (the transient) marked; the y range is widened for a constant
+// series. Returns the PNG path (out_dir/run_time_history.png).
+std::string run_time_history_figure(const std::vector<double>& x, double dt, long discard, const std::string& label,
+                                    const std::string& out_dir);
+
+// Time histories and phase portraits of a scene (seed Figs. 9/10 style).
+std::vector<std::string> model_figures(const Model& s, const Params& p, const std::vector<double>& x0, double dt,
+                                       double t_end, const std::string& out_dir);
+
+// Bifurcation diagram (peaks vs first parameter) and, for 2-D sweeps, the
+// largest-exponent map; for 1-D sweeps the exponents vs the parameter.
+std::vector<std::string> sweep_figures(const std::string& sweep_csv, const std::string& out_dir);
+
+// Creates directory d (one level) unless it exists; InputError otherwise.
+void ensure_dir(const std::string& d);
+
+// Runs gnuplot on a script; throws std::runtime_error if it fails.
+void run_gnuplot(const std::string& script_path);
+
+}  // namespace cvt::analysis

@@ -1,0 +1,60 @@
+#pragma once
+// The formulas of the reduced-order plant that several of its parts use, one
+// function each, written once (docs/rom.md). Each keeps the operation order
+// the trace hashes were recorded with: a change here changes the bits of every
+// target's trajectory (tests/determinism, tests/cross).
+//
+// Fixed point (RomUnits): the arguments are in the plant's units; every
+// operation saturates (scalar/fixed.hpp), so an out-of-range intermediate
+// shows as a state at a rail, which the watchdog reports.
+
+namespace cvt {
+
+// Slip velocity of a lump against the driver, v_rel = (v_c + xd) - v1, with
+// the chain frame at v_c = r2 w2 and the driver surface at v1 = r1e w1
+// (docs/rom.md#kinematics).
+template <class S>
+inline S slip_velocity(const S& v_chain, const S& xd, const S& v_driver) {
+  return (v_chain + xd) - v_driver;
+}
+
+// Force of a lump's strand spring and damper, k1 x + c1 xd (seed Eq. 8;
+// docs/rom.md#equations-of-motion).
+template <class S>
+inline S strand_force(const S& k1, const S& c1, const S& x, const S& xd) {
+  return k1 * x + c1 * xd;
+}
+
+// Torque of both strands on the driven pulley, r2 (F_s1 + F_s2).
+template <class S>
+inline S strand_torque(const S& r2, const S& strand1, const S& strand2) {
+  return r2 * (strand1 + strand2);
+}
+
+// Normal load of a lump on both flanks, N = F_ax / cos(beta), as F_ax times
+// the set-up constant 1/cos(beta) (docs/rom.md#contact).
+template <class S>
+inline S normal_force(const S& clamp_force, const S& inv_cos_beta) {
+  return clamp_force * inv_cos_beta;
+}
+
+// Friction on a lump, F = -phi(v_rel) N (docs/rom.md#contact).
+template <class S>
+inline S lump_friction(const S& phi, const S& normal) {
+  return -phi * normal;
+}
+
+// Friction torque on the driver, r1e (F1 + F2): what the chain transmits.
+template <class S>
+inline S friction_torque(const S& r1e, const S& F1, const S& F2) {
+  return r1e * (F1 + F2);
+}
+
+// Change of the driven pitch radius with the chain's radial position,
+// r2(rho) - r2 = rho (a1 + rho (a2 + rho a3)) (docs/rom.md#wedging).
+template <class S>
+inline S driven_radius_change(const S& rho, const S& a1, const S& a2, const S& a3) {
+  return rho * (a1 + rho * (a2 + rho * a3));
+}
+
+}  // namespace cvt

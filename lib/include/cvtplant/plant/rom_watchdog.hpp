@@ -1,0 +1,59 @@
+#pragma once
+// The stability watchdog of the reduced-order plant (docs/rom.md#watchdog):
+// the faults a frame can latch and the per-state checks. The energy check
+// lives with the ledger (rom_energy.hpp) and the simulator (rom_sim.hpp).
+#include <cstdint>
+#include <type_traits>
+
+#include "cvtplant/scalar/fixed.hpp"
+
+namespace cvt {
+
+enum class RomFault : std::uint8_t {
+  none = 0,
+  input_non_finite,   // an input was NaN/inf: the frame was not integrated
+  state_non_finite,   // the step produced NaN/inf (floating point)
+  state_saturated,    // a state hit the rail of the fixed-point range
+  energy_growth,      // stored energy exceeds what the inputs supplied (docs/rom.md#watchdog)
+  radius_out_of_range,  // wedging: the chain left the pulleys' radial travel (docs/rom.md#wedging)
+};
+
+inline constexpr const char* rom_fault_name(RomFault f) {
+  switch (f) {
+    case RomFault::none: return "none";
+    case RomFault::input_non_finite: return "input-non-finite";
+    case RomFault::state_non_finite: return "state-non-finite";
+    case RomFault::state_saturated: return "state-saturated";
+    case RomFault::radius_out_of_range: return "radius-out-of-range";
+    case RomFault::energy_growth: return "energy-growth";
+  }
+  return "?";
+}
+
+// False for NaN and +-inf; fixed point has neither.
+template <class T>
+inline bool rom_finite(const T& v) {
+  if constexpr (std::is_floating_point_v<T>) {
+    return v == v && v - v == v - v;  // NaN fails the first, +-inf the second
+  } else {
+    (void)v;
+    return true;
+  }
+}
+
+// The first fault a state shows: a non-finite component (floating point) or
+// one at the rail of the fixed-point range (saturated), else none.
+template <class State>
+inline RomFault rom_state_fault(const State& x) {
+  using T = typename State::Scalar;
+  for (int i = 0; i < x.size(); ++i) {
+    if constexpr (std::is_floating_point_v<T>) {
+      if (!rom_finite(x(i))) return RomFault::state_non_finite;
+    } else {
+      if (x(i) == T::max() || x(i) == T::lowest()) return RomFault::state_saturated;
+    }
+  }
+  return RomFault::none;
+}
+
+}  // namespace cvt

@@ -1,0 +1,110 @@
+#pragma once
+// Scene dispatch (docs/architecture.md#scene-dispatch): the one place where a
+// scene's run-time feature mask becomes a compiled plant.
+//
+// RomPlantSet<T, Masks...> is the set of plants a program compiles in: the
+// caller lists the feature masks it needs, so firmware carries only the
+// physics it ships (e.g. RomPlantSet<float, rom_feature::axial>), and the
+// host tools use AllRomPlants<T> (scene/all_plants.hpp), whose code is
+// compiled once in lib/src. SceneSimulator<Set> owns suitably aligned storage
+// for the largest plant of the set and builds the scene's plant in it:
+// placement new, no heap, and a clear refusal when the scene needs a plant
+// the set does not have.
+#include <cstddef>
+#include <cstdint>
+#include <new>
+#include <type_traits>
+
+#include "cvtplant/plant/rom_simulator_interface.hpp"
+#include "cvtplant/scene/scene.hpp"
+#include "cvtplant/scene/scene_runner.hpp"
+
+namespace cvt {
+
+namespace plant_set_detail {
+constexpr std::size_t max_of(std::size_t a) { return a; }
+template <class... R>
+constexpr std::size_t max_of(std::size_t a, std::size_t b, R... rest) {
+  return max_of(a > b ? a : b, rest...);
+}
+}  // namespace plant_set_detail
+
+// Why a feature mask has no plant in a set of scalar T, or nullptr if it has
+// one (`found`). Wedging has no fixed-point scaling (docs/rom.md#wedging).
+template <class T>
+constexpr const char* missing_plant_reason(std::uint32_t features, bool found) {
+  if (found) return nullptr;
+  if ((features & ~rom_feature::all) != 0u) return "unknown feature bit";
+  if ((features & rom_feature::wedging) != 0u && (features & rom_feature::axial) == 0u)
+    return "wedging needs the axial feature";
+  if ((features & rom_feature::wedging) != 0u && !std::is_floating_point<T>::value)
+    return "wedging runs in double or float only: there is no fixed-point plant with it";
+  return "this program has no plant compiled for this feature set";
+}
+
+template <class T, std::uint32_t... Masks>
+struct RomPlantSet {
+  static_assert(sizeof...(Masks) > 0, "a plant set needs at least one feature mask");
+  using Scalar = T;
+  static constexpr std::size_t kSize = plant_set_detail::max_of(sizeof(ErasedRomSimulator<T, Masks>)...);
+  static constexpr std::size_t kAlign = plant_set_detail::max_of(alignof(ErasedRomSimulator<T, Masks>)...);
+
+  // Replacing a plant in its storage needs no destructor call.
+  static_assert((std::is_trivially_destructible<ErasedRomSimulator<T, Masks>>::value && ...),
+                "plants are built in place and never destroyed");
+
+  static constexpr bool contains(std::uint32_t features) { return ((features == Masks) || ...); }
+
+  // Constructs the plant of `features` in `storage` (kSize bytes aligned to
+  // kAlign); nullptr if the set has none.
+  static IRomSimulator<T>* build(std::uint32_t features, const RomParams& p, const RomSimConfig& c, void* storage) {
+    IRomSimulator<T>* sim = nullptr;
+    (void)((features == Masks ? (sim = ::new (storage) ErasedRomSimulator<T, Masks>(p, c), true) : false) || ...);
+    return sim;
+  }
+};
+
+// validate_scene, then whether the set has the scene's plant.
+template <class Set>
+SceneIssue check_scene_plant(const Scene& s) {
+  const SceneIssue issue = validate_scene(s);
+  if (!issue.ok) return issue;
+  if (const char* why = missing_plant_reason<typename Set::Scalar>(s.features, Set::contains(s.features)))
+    return SceneIssue{false, "features", why};
+  return SceneIssue{};
+}
+
+// A scene's simulator, built from a plant set into storage it owns.
+// Neither copyable nor movable: the interface points into the storage.
+template <class Set>
+class SceneSimulator {
+ public:
+  using T = typename Set::Scalar;
+
+  SceneSimulator() = default;
+  SceneSimulator(const SceneSimulator&) = delete;
+  SceneSimulator& operator=(const SceneSimulator&) = delete;
+
+  // Checks the scene (check_scene_plant), then
+  // builds the plant with `cfg` and resets it to the scene's start. On a
+  // problem nothing is loaded and the issue says why.
+  SceneIssue load(const Scene& s, const RomSimConfig& cfg) {
+    sim_ = nullptr;
+    const SceneIssue issue = check_scene_plant<Set>(s);
+    if (!issue.ok) return issue;
+    sim_ = Set::build(s.features, s.params, cfg, storage_);
+    sim_->reset(s.initial, scene_inputs_at<T>(s, 0.0));
+    return SceneIssue{};
+  }
+  SceneIssue load(const Scene& s) { return load(s, sim_config_of(s)); }
+
+  bool loaded() const { return sim_ != nullptr; }
+  IRomSimulator<T>& sim() { return *sim_; }
+  const IRomSimulator<T>& sim() const { return *sim_; }
+
+ private:
+  alignas(Set::kAlign) unsigned char storage_[Set::kSize];
+  IRomSimulator<T>* sim_ = nullptr;
+};
+
+}  // namespace cvt

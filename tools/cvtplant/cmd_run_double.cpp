@@ -1,7 +1,0 @@
-// `cvtplant run` with the double plants (cmd_run_runner.hpp): one translation
-// unit per scalar so the build compiles them in parallel.
-#include "cmd_run_runner.hpp"
-
-namespace cvtcli::run_cmd {
-Result run_double(Runner& runner) { return with_features<double>(runner.scene.features, runner); }
-}  // namespace cvtcli::run_cmd

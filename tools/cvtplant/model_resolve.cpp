@@ -1,0 +1,30 @@
+#include "model_resolve.hpp"
+
+#include "commands.hpp"
+#include "scene_file.hpp"
+#include "cvtplant/analysis/errors.hpp"
+#include "cvtplant/analysis/rom_scenes.hpp"
+#include "cvtplant/scene/builtin_scenes.hpp"
+
+namespace cvtcli {
+
+std::shared_ptr<const cvt::analysis::Model> resolve_model(const std::string& name_or_path) {
+  namespace an = cvt::analysis;
+  if (an::has_model(name_or_path)) return std::make_shared<an::Model>(an::find_model(name_or_path));
+  std::shared_ptr<LoadedScene> scene;
+  try {
+    scene = resolve_scene(name_or_path);
+  } catch (const UsageError&) {
+    std::string known;
+    for (const an::Model& m : an::models()) known += (known.empty() ? "" : ", ") + m.name;
+    throw UsageError{"unknown scene '" + name_or_path + "': not a model (" + known +
+                     "), a built-in plant scene (see `cvtplant scenes`) or a readable scene file"};
+  }
+  try {
+    return std::make_shared<an::Model>(an::rom_model(scene->scene, scene->name));
+  } catch (const an::InputError& e) {
+    throw UsageError{e.what()};
+  }
+}
+
+}  // namespace cvtcli
