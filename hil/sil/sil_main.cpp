@@ -127,7 +127,9 @@ class Harness {
     m.scene_id = scene;
     m.step_seq = seq_;
     bool ok = false;
-    for (int attempt = 0; attempt <= kMaxResends && !ok; ++attempt) {
+    const std::int64_t t_first = clock_.now_ns();
+    int attempt = 0;
+    for (; attempt <= kMaxResends && !ok; ++attempt) {
       if (attempt > 0) ++resends_;
       CanFrame f;
       if (sim_.encode(m, f) != cvt::can::CodecStatus::Ok || bus_.send(f) != CanIoStatus::Ok) break;
@@ -136,6 +138,12 @@ class Harness {
       if (rep == Reply::Complete) ok = true;
       else if (rep == Reply::Partial) ++partial_groups_;
       else ++no_reply_;
+    }
+    // Wall time from the first send to the complete answer of a request
+    // that had to be sent again: what a lost frame costs the harness.
+    if (ok && attempt > 1) {
+      const std::int64_t took = clock_.now_ns() - t_first;
+      max_recovery_ns_ = took > max_recovery_ns_ ? took : max_recovery_ns_;
     }
     seq_ = static_cast<std::uint8_t>((seq_ + 1) & 0x0F);
     return ok;
@@ -178,6 +186,8 @@ class Harness {
   std::uint32_t resends() const { return resends_; }
   std::uint32_t no_reply() const { return no_reply_; }
   std::uint32_t partial_groups() const { return partial_groups_; }
+  std::int64_t max_recovery_ns() const { return max_recovery_ns_; }
+  void clear_recovery() { max_recovery_ns_ = 0; }
 
  private:
   static constexpr int kMaxResends = 3;
@@ -187,10 +197,9 @@ class Harness {
   // group), checking every plant frame through the E2E receive pipeline.
   // Complete: the three state frames before it carry its sample_tag.
   Reply wait_status(std::uint8_t seq, std::int64_t timeout_ns) {
-    cvt::port::PosixMonotonicClock clock;
-    const std::int64_t end = clock.now_ns() + timeout_ns;
+    const std::int64_t end = clock_.now_ns() + timeout_ns;
     for (;;) {
-      const std::int64_t left = end - clock.now_ns();
+      const std::int64_t left = end - clock_.now_ns();
       if (left <= 0) return Reply::None;
       CanFrame f;
       const CanIoStatus st = bus_.receive(f, on_idle_ ? 0 : left);
@@ -224,6 +233,8 @@ class Harness {
   cvt::port::CanTransport& bus_;
   std::int64_t reply_timeout_ns_;
   std::function<void()> on_idle_;
+  cvt::port::PosixMonotonicClock clock_;
+  std::int64_t max_recovery_ns_ = 0;
   cvt::can::TxChannel<cvt::can::SimCtrl> sim_;
   cvt::can::TxChannel<cvt::can::HarnessLoad> load_;
   cvt::can::RxBank rx_;
@@ -369,6 +380,7 @@ ScenarioResult run_scenario(const Scenario& sc, Harness& h, FaultInjector& hf, c
   const cvt::can::PlantCmdDiag cmd0 = h.cmd_diag();
   const std::uint32_t resends0 = h.resends(), lost_harness0 = hf.lost(), lost_ctl0 = cf.lost();
   const std::uint32_t ctl_rejected0 = ctl.counters().rejected;
+  h.clear_recovery();
   ctl.poll(100000000);
   ctl.restart();
   const int periods = static_cast<int>(sc.t_end_s / kPeriod_s + 0.5);
@@ -525,7 +537,9 @@ ScenarioResult run_scenario(const Scenario& sc, Harness& h, FaultInjector& hf, c
     // lockstep_time_exact above shows no request ran twice or not at all.
     const double lost = hf.lost() - lost_harness0;
     c.push_back({"lost_requests_recovered", resends >= fx.lost_requests() && lost == fx.lost_requests(),
-                 fmt("%.0f frames lost on purpose, %.0f requests sent again", lost, resends)});
+                 fmt("%.0f frames lost on purpose, %.0f requests sent again; slowest recovery %.1f ms wall "
+                     "(the reply timeout, then the answer to the resent request)",
+                     lost, resends, static_cast<double>(h.max_recovery_ns()) * 1e-6)});
   }
   if (!fx.lost_cmd_periods.empty()) {
     const double n = static_cast<double>(fx.lost_cmd_periods.size());
