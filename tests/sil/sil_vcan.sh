@@ -2,18 +2,20 @@
 # The SIL suite on vcan0, in one vcan-run invocation so the micro-VM boots
 # once (docs/sil.md#tests):
 #   hil/vcan-run --rw OUT_PARENT -- tests/sil/sil_vcan.sh BUILD_DIR SOURCE_DIR OUT_DIR
-# 1. cvtplant-bridge (lock-step) + cvtplant-sil: tip-in, load-step, clamp-loss
-#    with the example controller -> OUT/sil-junit.xml, OUT/sil-*.csv;
+# 1. cvtplant-bridge (lock-step) + cvtplant-sil: the seven scenarios (two
+#    driving, five faults) with the example controller -> OUT/sil-junit.xml
+#    (every scenario present and passed), OUT/sil-*.csv;
 #    an undersized clamp (--safety 0.8) must be caught as gross slip;
-#    the python3-can/canmatrix peer (sil_peer.py) on the same bridge; the
-#    bridge's JSON summary must show every rejection reason counted;
+#    the python3-can/canmatrix peer (sil_peer.py: malformed frames and the
+#    faults) on the same bridge; the bridge's JSON summary must show every
+#    rejection reason counted;
 #    candump's capture must equal the bridge's own log (check_sil_log.py);
 #    a receive-queue overflow provoked with SIGSTOP + cangen must show up in
 #    PlantBusDiag and PlantStatus.
 # 2. Determinism: two fresh bridges, same scenario, byte-identical logs.
-# 3. Real time: 3 s at 1 kHz with cvtplant-controller beside it for 2 s;
-#    jitter, overruns and the controller's fresh-data fraction reported, a
-#    lenient sanity check.
+# 3. Real time at 1 kHz with cvtplant-controller beside it for 2 s;
+#    jitter, overruns and the controller's fresh-data fraction reported and
+#    checked (>= 0.5; >= 0.8 when the plant kept time).
 # 4. Lock-step round trips (reported).
 # 5. gnuplot summary plot OUT/sil-summary.png.
 set -u
@@ -56,6 +58,21 @@ start_bridge bridge-sil --log "$OUT/bridge-sil.log"
 t0=$(date +%s.%N)
 "$SIL" run --iface "$IF" --out "$OUT" --junit "$OUT/sil-junit.xml" || fail "SIL scenarios"
 t1=$(date +%s.%N)
+# Every scenario, the fault scenarios included, ran here in lock-step over
+# vcan0 and passed every criterion (docs/sil.md#scenarios).
+$PY - "$OUT/sil-junit.xml" <<'PYEOF' || fail "JUnit report"
+import sys
+import xml.etree.ElementTree as ET
+want = ["tip-in", "load-step", "clamp-loss", "lost-frames", "frozen-controller", "controller-restart",
+        "controller-flood"]
+suites = {s.get("name"): s for s in ET.parse(sys.argv[1]).getroot().iter("testsuite")}
+bad = [n for n in want if "sil." + n not in suites or suites["sil." + n].get("failures") != "0" or
+       not any(c.get("name") == "lockstep_time_exact" for c in suites["sil." + n].iter("testcase"))]
+print("sil_vcan: JUnit: %d scenarios, %d checks, %s" % (
+    len(suites), sum(int(s.get("tests")) for s in suites.values()),
+    "all passed" if not bad else "missing or failed: %s" % bad))
+sys.exit(1 if bad else 0)
+PYEOF
 mkdir -p "$OUT/undersized"
 if "$SIL" run --iface "$IF" --scenario load-step --safety 0.8 --out "$OUT/undersized" > "$OUT/undersized/out.txt"; then
   fail "an undersized clamp (safety 0.8) passed the gross-slip criterion"
@@ -132,14 +149,13 @@ fi
 echo "sil_vcan: log checks $(awk "BEGIN{print $t3 - $t2}") s, determinism $(awk "BEGIN{print $(date +%s.%N) - $t3}") s"
 # ---- 3. real time, 4. round trips (figures, docs/sil.md#figures) -----------
 # Real time with the example controller beside it, following the plant's
-# groups (docs/sil.md#controller-schedule): the bridge runs 3 s, the
-# controller the 2 s in the middle, so every control step has a plant.
-start_bridge bridge-rt --mode realtime --duration-s 3 --sched-fifo 50
-rt_pid=$bridge_pid
-sleep 0.5
+# groups (docs/sil.md#controller-schedule). The controller runs 2 s and the
+# bridge is stopped only after it, so every control step has a plant running
+# (--duration-s 60 only caps a run whose controller never ends).
+start_bridge bridge-rt --mode realtime --duration-s 60 --sched-fifo 50
 "$BUILD/hil/controller/cvtplant-controller" --iface "$IF" --demand-Nm 80 --duration-s 2 > "$OUT/controller-rt.json" \
   || fail "controller exit status"
-wait "$rt_pid" || fail "real-time bridge"
+stop_bridge
 $PY - "$OUT/bridge-rt.json" "$OUT/controller-rt.json" <<'PYEOF' || fail "real-time summary"
 import json, sys
 s = json.load(open(sys.argv[1]))
@@ -152,13 +168,24 @@ print("sil_vcan: real time 1 kHz with the controller: %d periods, %d overruns, S
          j["max"] / 1e3, s["rx"]["accepted"], s["cmd_timeouts"], c))
 print("sil_vcan: controller steps with fresh plant data: %d of %d (%.3f), longest gap between steps %.1f ms"
       % (c["fresh_periods"], c["periods"], c["fresh_fraction"], c["max_step_gap_ms"]))
-# Lenient: TCG under load stalls for tens to hundreds of ms, and a step
-# after a stall of more than 15 ms has no fresh group by definition (a run
-# with 1303 overruns in 3000 frames gave 0.753). The exact figures are the
-# in-process test's (test_controller_schedule.cpp).
-ok = (rt["periods"] >= 3000 and j["max"] >= j["p99_9"] >= j["p99"] >= j["p50"] >= 0 and
-      s["rx"]["accepted"] >= 50 and s["rx"]["rejected"] == 0 and s["plant_fault"] == "none" and
-      c["accepted"] >= 50 and c["rejected"] == 0 and c["fresh_fraction"] >= 0.5)
+# What holds however starved the VM is: the two nodes talked, the plant ran
+# without a fault, nothing was rejected but the counter jump that may follow
+# each command timeout (the frames queued during the outage are drained, so
+# the next fresh one skips their counters, docs/sil.md#timeouts; a run at
+# host load 8 had 7 timeouts and 1 such jump), and the controller followed the
+# plant's groups (fresh-data fraction >= 0.5; a run at host load 9 with 2410
+# overruns in 3933 frames gave 0.989). The exact figures of the schedule are
+# the in-process test's (test_controller_schedule.cpp); here the tighter
+# floor 0.8 applies when at most 10 % of the frames overran.
+on_time = rt["overruns"] <= 0.1 * rt["periods"]
+floor = 0.8 if on_time else 0.5
+ok = (rt["periods"] >= 2000 and j["max"] >= j["p99_9"] >= j["p99"] >= j["p50"] >= 0 and
+      s["rx"]["accepted"] >= 50 and s["rx"]["rejected"] == s["rx"]["wrong_sequence"] <= s["cmd_timeouts"] and
+      s["plant_fault"] == "none" and
+      c["accepted"] >= 50 and c["rejected"] == 0 and c["fresh_fraction"] >= floor)
+print("sil_vcan: fresh-data floor %.1f (%d of %d frames overran); bridge rejected %d (%d counter jumps after "
+      "%d command timeouts)" % (floor, rt["overruns"], rt["periods"], s["rx"]["rejected"], s["rx"]["wrong_sequence"],
+                                s["cmd_timeouts"]))
 sys.exit(0 if ok else 1)
 PYEOF
 # Round trips, both ends on one CPU and on any CPU (hil/bench/sil-bench.sh
