@@ -148,11 +148,14 @@ class Sig:
             raise DbcError("%s: GenSigStartValue %d is not in the VAL_ table" % (where, init_raw))
         self.init_raw = init_raw
         self.timeout_action = self.attrs.get("CvtTimeoutAction", "None")
-        if self.timeout_action not in ("None", "Replace", "Substitute"):
+        if self.timeout_action not in ("None", "Replace", "Substitute", "Ramp"):
             raise DbcError("%s: unknown CvtTimeoutAction %r" % (where, self.timeout_action))
         self.substitute = Decimal(str(self.attrs.get("CvtSubstituteValue", "0")))
-        if self.timeout_action == "Substitute" and not (self.min <= self.substitute <= self.max):
+        self.rate = Decimal(str(self.attrs.get("CvtSubstituteRate", "0")))
+        if self.timeout_action in ("Substitute", "Ramp") and not (self.min <= self.substitute <= self.max):
             raise DbcError("%s: CvtSubstituteValue outside [min|max]" % where)
+        if self.timeout_action == "Ramp" and (self.kind != "float" or not self.rate > 0):
+            raise DbcError("%s: Ramp needs a scaled (float) signal and CvtSubstituteRate > 0" % where)
         if self.kind == "enum":
             self.enum_name = camel(self.name)
 
@@ -293,10 +296,13 @@ class Msg:
         self.timeout_ms = int(a.get("CvtRxTimeout", 0))
         self.data_id = int(a.get("CvtE2EDataID", 0))
         self.max_delta = int(a.get("CvtE2EMaxDeltaCounter", 2))
+        self.sync_init = int(a.get("CvtE2ESyncCounterInit", 1))
         if self.data_id == 0:
             raise DbcError("%s: no CvtE2EDataID; every message on this bus is E2E protected" % self.name)
         if not (1 <= self.max_delta <= 14):
             raise DbcError("%s: CvtE2EMaxDeltaCounter must be 1..14" % self.name)
+        if not (0 <= self.sync_init <= 14):
+            raise DbcError("%s: CvtE2ESyncCounterInit must be 0..14" % self.name)
         sigs = {s.name: s for s in f.signals}
         crc, ctr = sigs.get("E2E_CRC"), sigs.get("E2E_Counter")
         if crc is None or ctr is None:
@@ -394,6 +400,7 @@ def generate(path):
         w("  static constexpr uint8_t kDlc = %d;" % m.dlc)
         w("  static constexpr uint16_t kE2eDataId = 0x%04Xu;" % m.data_id)
         w("  static constexpr uint8_t kE2eMaxDeltaCounter = %d;" % m.max_delta)
+        w("  static constexpr uint8_t kE2eSyncCounterInit = %d;" % m.sync_init)
         w("  static constexpr uint16_t kCycleTime_ms = %d;" % m.cycle_ms)
         w("  static constexpr uint16_t kRxTimeout_ms = %d;" % m.timeout_ms)
         w('  static constexpr const char* kName = "%s";' % m.name)
@@ -441,7 +448,8 @@ def generate(path):
         w("  return CodecStatus::Ok;")
         w("}")
         w("")
-        w("// Value to use after a receive timeout (docs/can.md#timeouts).")
+        w("// Value to use from a receive timeout on (docs/can.md#timeouts). Ramp")
+        w("// signals start from the last value and move with rx_timeout_ramp().")
         w("constexpr %s on_rx_timeout(const %s& last) noexcept {" % (m.name, m.name))
         w("  %s m = last;" % m.name)
         for s in m.signals:
@@ -449,6 +457,19 @@ def generate(path):
                 w("  m.%s = %s;  // Replace: init value" % (s.name, s.cpp_value(raw=s.init_raw)))
             elif s.timeout_action == "Substitute":
                 w("  m.%s = %s;  // Substitute" % (s.name, s.cpp_value(phys=s.substitute)))
+        w("  return m;")
+        w("}")
+        w("")
+        ramps = [s for s in m.signals if s.timeout_action == "Ramp"]
+        w("// While timed out, once per dt_s [s]: each Ramp signal moves toward its")
+        w("// substitute value by at most CvtSubstituteRate * dt_s.")
+        w("constexpr %s rx_timeout_ramp(const %s& current, float dt_s) noexcept {" % (m.name, m.name))
+        w("  %s m = current;" % m.name)
+        if not ramps:
+            w("  (void)dt_s;")
+        for s in ramps:
+            w("  m.%s = ramp_toward(m.%s, %s, %s * dt_s);  // Ramp, %s %s/s" % (
+                s.name, s.name, s.cpp_value(phys=s.substitute), flit(s.rate), format(s.rate.normalize(), "f"), s.unit or "1"))
         w("  return m;")
         w("}")
         w("")
@@ -464,6 +485,7 @@ def generate(path):
     w("  uint8_t dlc;")
     w("  uint16_t e2e_data_id;")
     w("  uint8_t e2e_max_delta_counter;")
+    w("  uint8_t e2e_sync_counter_init;")
     w("  uint16_t cycle_time_ms;")
     w("  uint16_t rx_timeout_ms;")
     w("  const char* name;")
@@ -471,7 +493,8 @@ def generate(path):
     w("")
     w("inline constexpr MessageInfo kMessages[kMessageCount] = {")
     for m in msgs:
-        w("    {%s::kId, %s::kDlc, %s::kE2eDataId, %s::kE2eMaxDeltaCounter, %s::kCycleTime_ms, %s::kRxTimeout_ms, %s::kName}," % ((m.name,) * 7))
+        w("    {%s::kId, %s::kDlc, %s::kE2eDataId, %s::kE2eMaxDeltaCounter, %s::kE2eSyncCounterInit, %s::kCycleTime_ms," % ((m.name,) * 6))
+        w("     %s::kRxTimeout_ms, %s::kName}," % ((m.name,) * 2))
     w("};")
     w("")
     w("// Index into kMessages, or -1 for an ID this bus does not define.")
@@ -537,6 +560,9 @@ def generate(path):
     w("    }")
     w("    return r;")
     w("  }")
+    w("  // The deadline of `id` expired (docs/can.md#timeouts).")
+    w("  void require_resync(MessageId id) noexcept { checkers_[static_cast<uint8_t>(id)].require_resync(); }")
+    w("  // A new run: forget the sender of `id`.")
     w("  void reset(MessageId id) noexcept { checkers_[static_cast<uint8_t>(id)].reset(); }")
     w("  void reset_all() noexcept {")
     w("    for (E2eChecker& c : checkers_) c.reset();")
@@ -546,7 +572,8 @@ def generate(path):
     w(" private:")
     w("  E2eChecker checkers_[kMessageCount] = {")
     for m in msgs:
-        w("      E2eChecker{%s::kE2eDataId, E2eCheckerConfig{%s::kE2eMaxDeltaCounter}}," % (m.name, m.name))
+        w("      E2eChecker{%s::kE2eDataId, E2eCheckerConfig{%s::kE2eMaxDeltaCounter, %s::kE2eSyncCounterInit}}," % (
+            m.name, m.name, m.name))
     w("  };")
     w("};")
     w("")

@@ -51,6 +51,32 @@ TEST_CASE("loopback ring overflow drops the newest frames and counts them") {
   CHECK(bus.node(1).receive(r, 0) == CanIoStatus::Timeout);
 }
 
+TEST_CASE("loopback drop filter: a frame lost on the wire reaches no node, the sender sees Ok") {
+  port::LoopbackBus<3, 8> bus;
+  // Drop every second frame with ID 0x200 that node 0 sends.
+  struct Ctx {
+    int seen = 0;
+  } ctx;
+  bus.set_drop_filter(
+      [](void* c, size_t from, const can::CanFrame& f) {
+        return from == 0 && f.id == 0x200 && (static_cast<Ctx*>(c)->seen++ % 2) == 1;
+      },
+      &ctx);
+  for (uint8_t i = 0; i < 4; ++i) CHECK(bus.node(0).send(data_frame(0x200, i)) == CanIoStatus::Ok);
+  CHECK(bus.node(1).send(data_frame(0x200, 9)) == CanIoStatus::Ok);  // another sender: kept
+  CHECK(bus.frames_dropped() == 2);
+  for (size_t n : {size_t{1}, size_t{2}}) CHECK(bus.node(n).pending() == (n == 1 ? 2u : 3u));
+  can::CanFrame r;
+  REQUIRE(bus.node(2).receive(r, 0) == CanIoStatus::Ok);
+  CHECK(r.data[0] == 0);
+  REQUIRE(bus.node(2).receive(r, 0) == CanIoStatus::Ok);
+  CHECK(r.data[0] == 2);
+  bus.set_drop_filter(nullptr);
+  CHECK(bus.node(0).send(data_frame(0x200, 7)) == CanIoStatus::Ok);
+  CHECK(bus.frames_dropped() == 2);
+  CHECK(bus.node(0).counters().tx_frames == 5);  // the sender cannot tell
+}
+
 TEST_CASE("transmit buffer exhaustion: bounded retries, then counted drop") {
   using Bus = port::LoopbackBus<2, 8>;
   Bus bus;
@@ -137,15 +163,18 @@ TEST_CASE("CAN link over loopback: E2E, codec and the timeout reaction") {
   }
   CHECK(applied.clamp_force_cmd_N == 1190.0f);
   // Link silent: the receiver waits; after kRxTimeout_ms it applies the
-  // DBC's reaction and resets its E2E state (docs/can.md#timeouts).
+  // DBC's reaction and requires its E2E state to re-synchronise
+  // (docs/can.md#timeouts).
   while (bus.node(1).receive(f, 1000000) == CanIoStatus::Timeout &&
          clk.now_ns() - last_rx_ns < can::CtrlCmd::kRxTimeout_ms * 1000000LL) {
   }
   CHECK(clk.now_ns() - last_rx_ns >= can::CtrlCmd::kRxTimeout_ms * 1000000LL);
   applied = can::on_rx_timeout(applied);
-  rx.reset();
-  CHECK(applied.clamp_force_cmd_N == 20000.0f);
-  CHECK_FALSE(rx.checker().synced());
+  rx.require_resync();
+  CHECK(applied.clamp_force_cmd_N == 1190.0f);  // the DBC's Ramp starts from the last value
+  applied = can::rx_timeout_ramp(applied, 0.5f);
+  CHECK(applied.clamp_force_cmd_N == 20000.0f);  // 1190 + 25000 capped at the substitute
+  CHECK(rx.checker().resynchronising());
 }
 
 TEST_CASE("POSIX monotonic clock: non-decreasing, sleep_until reaches the deadline") {

@@ -21,6 +21,7 @@ expect 2 "$BRIDGE" --scene no-such-scene
 expect 2 "$BRIDGE" --duration-s -1
 expect 2 "$BRIDGE" --sched-fifo 100
 expect 2 "$BRIDGE" --log-clock wall
+expect 2 "$BRIDGE" --cmd-timeout-reaction substitute
 expect 2 "$BRIDGE" --iface
 expect 1 "$BRIDGE" --iface nosuchcan0
 expect 0 "$SIL" --help
@@ -28,6 +29,7 @@ expect 2 "$SIL"
 expect 2 "$SIL" fly
 expect 2 "$SIL" run --scenario nope
 expect 2 "$SIL" run --safety x
+expect 2 "$SIL" run --reply-timeout-ms 0
 expect 2 "$SIL" bench --steps 0
 expect 1 "$SIL" run --iface nosuchcan0
 # An output directory that cannot be made is an error, not missing traces.
@@ -35,5 +37,6 @@ expect 1 "$SIL" run --loopback --scenario tip-in --out /proc/cvtplant-no-such-di
 expect 0 "$CONTROLLER" --help
 expect 2 "$CONTROLLER" --bogus
 expect 2 "$CONTROLLER" --demand-Nm 900
+expect 2 "$CONTROLLER" --schedule sometimes
 expect 1 "$CONTROLLER" --iface nosuchcan0
 exit $rc

@@ -3,10 +3,12 @@
 (docs/sil.md#log).
 
 - every line of both files parses as candump -L: "(sec.usec) IFACE ID#HEX";
-- the plant frames candump captured (IDs 0x200..0x301) are, in order and
-  byte for byte, exactly the frames in the bridge's log;
+- the plant frames candump captured (the DBC's Plant messages) are, in order
+  and byte for byte, exactly the frames in the bridge's log;
 - each of them has a valid Profile 1 CRC and a counter sequence 0..14 without
-  gaps per message; the first 400 and every 20th decode with canmatrix;
+  gaps per message; the first 400 and every 20th decode with canmatrix, and
+  so does at least one frame of every Plant message of the DBC, with every
+  signal the DBC gives it;
 - the harness's SimCtrl and the controller's CtrlCmd frames are on the bus.
 
 usage: check_sil_log.py CANDUMP_LOG BRIDGE_LOG DBC
@@ -42,7 +44,8 @@ def main():
     fails = []
     dump = parse(dump_path, fails)
     bridge = parse(bridge_path, fails)
-    plant = [(i, d) for i, d in dump if len(i) == 3 and 0x200 <= int(i, 16) <= 0x301]
+    plant_ids = {f.arbitration_id.id for f in db.frames if f.name.startswith("Plant")}
+    plant = [(i, d) for i, d in dump if len(i) == 3 and int(i, 16) in plant_ids]
     if not bridge:
         fails.append("bridge log is empty")
     if plant != bridge:
@@ -51,6 +54,7 @@ def main():
         fails.append("candump captured %d plant frames, bridge logged %d; first difference at #%d"
                      % (len(plant), len(bridge), first))
     last = {}
+    decoded = set()
     # canmatrix decoding is slow under the VM's TCG: every frame gets the CRC
     # and counter check, a sample of them the canmatrix decode.
     for k, (ident, data) in enumerate(bridge):
@@ -65,8 +69,15 @@ def main():
         if fr.name in last and ctr != (last[fr.name] + 1) % 15:
             fails.append("%s: counter %d after %d" % (fr.name, ctr, last[fr.name]))
         last[fr.name] = ctr
-        if k < 400 or k % 20 == 0:
-            fr.decode(p)
+        if k < 400 or k % 20 == 0 or fr.name not in decoded:
+            d = fr.decode(p)
+            missing = {s.name for s in fr.signals} - set(d)
+            if missing:
+                fails.append("%s: canmatrix decoded no %s" % (fr.name, sorted(missing)))
+            decoded.add(fr.name)
+    for fr in db.frames:
+        if fr.arbitration_id.id in plant_ids and fr.name not in decoded:
+            fails.append("no %s frame in the bridge log" % fr.name)
     ids = [int(i, 16) for i, _ in dump if len(i) == 3]
     n_sim, n_cmd = ids.count(0x080), ids.count(0x100)
     if n_sim == 0 or n_cmd == 0:

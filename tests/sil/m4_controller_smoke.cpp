@@ -2,6 +2,7 @@
 // (tests/can/check_m4_codec.sh): the example controller's law and CAN node
 // on a stand-in for an MCU CAN driver, with the firmware flags. Any heap,
 // exception or RTTI reference fails the test (docs/sil.md#controller).
+#include "cvtctl/control_schedule.hpp"
 #include "cvtctl/controller_node.hpp"
 
 namespace {
@@ -33,14 +34,19 @@ class MailboxCan final : public cvt::port::CanTransport {
 
 MailboxCan g_can;
 cvtctl::ControllerNode g_node(g_can);
+cvtctl::ControlSchedule g_schedule;
 
 }  // namespace
 
-// One frame in, one control period out; returns the clamping command [N].
-extern "C" float cvt_controller_m4_smoke(const cvt::can::CanFrame* in, float demand_Nm) {
+// One frame in at now_ns; a control step when the schedule says so; returns
+// the clamping command [N].
+extern "C" float cvt_controller_m4_smoke(const cvt::can::CanFrame* in, float demand_Nm, int64_t now_ns) {
   g_can.rx = *in;
   g_can.rx_full = true;
   g_node.poll(0);
-  g_node.control_step(demand_Nm);
+  if (g_schedule.due(now_ns, g_node.fresh_group())) {
+    g_node.control_step(demand_Nm);
+    g_schedule.ran(now_ns);
+  }
   return g_node.last_output().clamp_force_cmd_N;
 }

@@ -2,15 +2,21 @@
 # The SIL suite on vcan0, in one vcan-run invocation so the micro-VM boots
 # once (docs/sil.md#tests):
 #   hil/vcan-run --rw OUT_PARENT -- tests/sil/sil_vcan.sh BUILD_DIR SOURCE_DIR OUT_DIR
-# 1. cvtplant-bridge (lock-step) + cvtplant-sil: tip-in, load-step, clamp-loss
-#    with the example controller -> OUT/sil-junit.xml, OUT/sil-*.csv;
+# 1. cvtplant-bridge (lock-step) + cvtplant-sil: the seven scenarios (two
+#    driving, five faults) with the example controller -> OUT/sil-junit.xml
+#    (every scenario present and passed), OUT/sil-*.csv;
 #    an undersized clamp (--safety 0.8) must be caught as gross slip;
-#    the python3-can/canmatrix peer (sil_peer.py) on the same bridge; the
-#    bridge's JSON summary must show every rejection reason counted;
-#    candump's capture must equal the bridge's own log (check_sil_log.py).
+#    the python3-can/canmatrix peer (sil_peer.py: malformed frames and the
+#    faults) on the same bridge; the bridge's JSON summary must show every
+#    rejection reason counted;
+#    candump's capture and the bridge's own log are written for
+#    check_sil_log.py, which sil_vcan_ctest.sh runs on the host afterwards;
+#    a receive-queue overflow provoked with SIGSTOP + cangen must show up in
+#    PlantBusDiag and PlantStatus.
 # 2. Determinism: two fresh bridges, same scenario, byte-identical logs.
-# 3. Real time: 2 s at 1 kHz with cvtplant-controller at 10 ms beside it;
-#    jitter and overruns reported, a lenient sanity check.
+# 3. Real time at 1 kHz with cvtplant-controller beside it for 2 s;
+#    jitter, overruns and the controller's fresh-data fraction reported;
+#    the fraction (>= 0.8) and counts checked when the plant kept time.
 # 4. Lock-step round trips (reported).
 # 5. gnuplot summary plot OUT/sil-summary.png.
 set -u
@@ -53,6 +59,21 @@ start_bridge bridge-sil --log "$OUT/bridge-sil.log"
 t0=$(date +%s.%N)
 "$SIL" run --iface "$IF" --out "$OUT" --junit "$OUT/sil-junit.xml" || fail "SIL scenarios"
 t1=$(date +%s.%N)
+# Every scenario, the fault scenarios included, ran here in lock-step over
+# vcan0 and passed every criterion (docs/sil.md#scenarios).
+$PY - "$OUT/sil-junit.xml" <<'PYEOF' || fail "JUnit report"
+import sys
+import xml.etree.ElementTree as ET
+want = ["tip-in", "load-step", "clamp-loss", "lost-frames", "frozen-controller", "controller-restart",
+        "controller-flood"]
+suites = {s.get("name"): s for s in ET.parse(sys.argv[1]).getroot().iter("testsuite")}
+bad = [n for n in want if "sil." + n not in suites or suites["sil." + n].get("failures") != "0" or
+       not any(c.get("name") == "lockstep_time_exact" for c in suites["sil." + n].iter("testcase"))]
+print("sil_vcan: JUnit: %d scenarios, %d checks, %s" % (
+    len(suites), sum(int(s.get("tests")) for s in suites.values()),
+    "all passed" if not bad else "missing or failed: %s" % bad))
+sys.exit(1 if bad else 0)
+PYEOF
 mkdir -p "$OUT/undersized"
 if "$SIL" run --iface "$IF" --scenario load-step --safety 0.8 --out "$OUT/undersized" > "$OUT/undersized/out.txt"; then
   fail "an undersized clamp (safety 0.8) passed the gross-slip criterion"
@@ -85,7 +106,33 @@ if missing:
     print("not counted:", missing)
 sys.exit(0 if ok else 1)
 PYEOF
-$PY "$SRC/tests/sil/check_sil_log.py" "$OUT/candump.log" "$OUT/bridge-sil.log" "$DBC" || fail "candump vs bridge log"
+# candump.log against bridge-sil.log: checked on the host afterwards
+# (sil_vcan_ctest.sh), where Python runs without the VM's emulation.
+
+# ---- 1b. receive-queue overflow, reported on the bus ------------------------
+# The bridge is stopped (SIGSTOP) while cangen floods the bus: its socket
+# queue overflows in the kernel. Once it runs again, PlantBusDiag must carry
+# the kernel's drop count (SO_RXQ_OVFL), equal to its JSON summary, and the
+# next PlantStatus fault_frames_dropped.
+start_bridge bridge-ovf
+$PY "$SRC/tests/sil/sil_bus_diag.py" "$IF" "$DBC" > "$OUT/ovf-before.json" || fail "bus diagnostics before the flood"
+kill -STOP "$bridge_pid"
+cangen "$IF" -g 0 -n ${CVT_SIL_FLOOD:-4000} -I 555 -L 8 -D 0011223344556677 || fail "cangen flood"
+kill -CONT "$bridge_pid"
+$PY "$SRC/tests/sil/sil_bus_diag.py" "$IF" "$DBC" > "$OUT/ovf-after.json" || fail "bus diagnostics after the flood"
+stop_bridge
+$PY - "$OUT/ovf-before.json" "$OUT/ovf-after.json" "$OUT/bridge-ovf.json" <<'PYEOF' || fail "overflow not reported on the bus"
+import json, sys
+before, after = (json.loads(open(p).read()) for p in sys.argv[1:3])
+s = json.load(open(sys.argv[3]))
+print("sil_vcan: receive-queue overflow: PlantBusDiag.rx_kernel_drops %d -> %d, JSON %d; fault_frames_dropped %s; "
+      "rejected_frames %d -> %d" % (before["rx_kernel_drops"], after["rx_kernel_drops"], s["bus"]["rx_kernel_drops"],
+                                    after["fault_frames_dropped"], before["rejected_frames"], after["rejected_frames"]))
+ok = (before["rx_kernel_drops"] == 0 and after["rx_kernel_drops"] > 0 and
+      after["rx_kernel_drops"] == s["bus"]["rx_kernel_drops"] % 65536 and after["fault_frames_dropped"] and
+      not before["fault_frames_dropped"] and after["bus_state"] == "ErrorActive")
+sys.exit(0 if ok else 1)
+PYEOF
 
 t3=$(date +%s.%N)
 # ---- 2. determinism ---------------------------------------------------------
@@ -101,32 +148,53 @@ else
   fail "determinism: the two lock-step traces differ"
 fi
 
-echo "sil_vcan: log checks $(awk "BEGIN{print $t3 - $t2}") s, determinism $(awk "BEGIN{print $(date +%s.%N) - $t3}") s"
+echo "sil_vcan: summary and overflow checks $(awk "BEGIN{print $t3 - $t2}") s, determinism $(awk "BEGIN{print $(date +%s.%N) - $t3}") s"
 # ---- 3. real time, 4. round trips (figures, docs/sil.md#figures) -----------
-# Real time with the example controller free-running at 10 ms beside it.
-"$BUILD/hil/controller/cvtplant-controller" --iface "$IF" --demand-Nm 80 --duration-s 4 > "$OUT/controller-rt.json" &
-ctl_pid=$!
-sleep 0.5
-start_bridge bridge-rt --mode realtime --duration-s 2 --sched-fifo 50
-wait "$bridge_pid" || fail "real-time bridge"
-kill -TERM "$ctl_pid" 2>/dev/null; wait "$ctl_pid" || fail "controller exit status"
+# Real time with the example controller beside it, following the plant's
+# groups (docs/sil.md#controller-schedule). The controller runs 2 s and the
+# bridge is stopped only after it, so every control step has a plant running
+# (--duration-s 60 only caps a run whose controller never ends).
+start_bridge bridge-rt --mode realtime --duration-s 60 --sched-fifo 50
+"$BUILD/hil/controller/cvtplant-controller" --iface "$IF" --demand-Nm 80 --duration-s 2 > "$OUT/controller-rt.json" \
+  || fail "controller exit status"
+stop_bridge
 $PY - "$OUT/bridge-rt.json" "$OUT/controller-rt.json" <<'PYEOF' || fail "real-time summary"
 import json, sys
 s = json.load(open(sys.argv[1]))
 c = json.load(open(sys.argv[2]))
 rt = s["realtime"]
+if rt is None:
+    print("sil_vcan: the bridge never ran in real time (stopped before its pacing loop)")
+    sys.exit(1)
 j = rt["jitter_ns"]
 print("sil_vcan: real time 1 kHz with the controller: %d periods, %d overruns, SCHED_FIFO %s, lateness p50 %.1f us "
-      "p99 %.1f us p99.9 %.1f us max %.1f us; bridge accepted %d CtrlCmd-era frames, %d cmd timeouts; controller %s"
+      "p99 %.1f us p99.9 %.1f us max %.1f us; bridge accepted %d frames, %d cmd timeouts; controller %s"
       % (rt["periods"], rt["overruns"], rt["sched_fifo"], j["p50"] / 1e3, j["p99"] / 1e3, j["p99_9"] / 1e3,
          j["max"] / 1e3, s["rx"]["accepted"], s["cmd_timeouts"], c))
-# Lenient: TCG under load stalls for tens to hundreds of ms (each stall
-# longer than 50 ms is a command timeout and drains the queue), but a
-# quarter of the 200 commands of 2 s must be applied, nothing may be
-# rejected, and the controller must have received plant groups.
-ok = (rt["periods"] >= 2000 and j["max"] >= j["p99_9"] >= j["p99"] >= j["p50"] >= 0 and
-      s["rx"]["accepted"] >= 50 and s["rx"]["rejected"] == 0 and s["plant_fault"] == "none" and
-      c["accepted"] >= 50 and c["rejected"] == 0)
+print("sil_vcan: controller steps with fresh plant data: %d of %d (%.3f), longest gap between steps %.1f ms"
+      % (c["fresh_periods"], c["periods"], c["fresh_fraction"], c["max_step_gap_ms"]))
+# What holds however starved the VM is: the bridge paced frames in real
+# time, the two nodes talked, the plant ran without a fault, and nothing was
+# rejected but the counter jump that may follow each command timeout (the
+# frames queued during the outage are drained, so the next fresh one skips
+# their counters, docs/sil.md#timeouts; a run at host load 8 had 7 timeouts
+# and 1 such jump), or frames the kernel dropped. What depends on CPU time is checked only when the plant
+# kept time (at most 10 % of its frames overran): at least 2000 frames in the
+# controller's 2 s, 50 commands applied, a fresh-data fraction of at least
+# 0.8. The TCG VM on a loaded host often does not keep time (a run at host
+# load 14 had a median lateness of 1.6 s); the exact figures of the schedule
+# are the in-process test's (test_controller_schedule.cpp).
+on_time = rt["overruns"] <= 0.1 * rt["periods"]
+ok = (rt["periods"] >= 1 and j["max"] >= j["p99_9"] >= j["p99"] >= j["p50"] >= 0 and
+      s["rx"]["accepted"] >= 1 and s["rx"]["rejected"] == s["rx"]["wrong_sequence"] <=
+      s["cmd_timeouts"] + s["bus"]["rx_kernel_drops"] and
+      s["plant_fault"] == "none" and c["accepted"] >= 1 and c["rejected"] == 0)
+if on_time:
+    ok = ok and rt["periods"] >= 2000 and s["rx"]["accepted"] >= 50 and c["fresh_fraction"] >= 0.8
+print("sil_vcan: %d of %d frames overran: %s; bridge rejected %d (%d counter jumps after %d command timeouts)" % (
+    rt["overruns"], rt["periods"], "the plant kept time, frames, commands and fresh-data floor 0.8 checked" if on_time
+    else "the VM did not keep time, only the functional checks apply", s["rx"]["rejected"],
+    s["rx"]["wrong_sequence"], s["cmd_timeouts"]))
 sys.exit(0 if ok else 1)
 PYEOF
 # Round trips, both ends on one CPU and on any CPU (hil/bench/sil-bench.sh

@@ -1,4 +1,4 @@
-// Generated codec (lib/include/cvtplant/can/messages.hpp) against the DBC's
+// Generated codec (hil/codegen/include/cvtplant/can/messages.hpp) against the DBC's
 // intent: bit layout, rounding, range/NaN/enum rejection, DLC/ID/kind
 // rejection and the receive pipeline (docs/can.md).
 #include <doctest/doctest.h>
@@ -353,6 +353,41 @@ TEST_CASE("receive pipeline: E2E first, then values; nothing applied on reject")
   f.id = 0x7FF;
   r = rx.receive(f, any);
   CHECK(r.codec == CodecStatus::UnknownId);
+
+  // A counter jump (counter 9 after 1) with an out-of-range value: rejected
+  // by the range check and not adopted for re-synchronisation.
+  uint8_t jump[8] = {0, 0x09, 0x61, 0xEA, 0, 0, 0, 0};
+  jump[0] = e2e_crc(CtrlCmd::kE2eDataId, jump);
+  CanFrame j = f;
+  j.id = CtrlCmd::kId;
+  std::memcpy(j.data, jump, 8);
+  r = rx.receive(j, any);
+  CHECK(r.e2e == E2eStatus::WrongSequence);
+  CHECK(r.codec == CodecStatus::OutOfRange);
+  CHECK(rx.checker(MessageId::CtrlCmd).last_counter() == 1);
+  CHECK_FALSE(rx.checker(MessageId::CtrlCmd).resynchronising());
+  // The same jump with a valid value: still not applied, but adopted; the
+  // next in-sequence frame is Sync (not applied), the one after it is OK.
+  jump[2] = 0x88;  // 5000 N
+  jump[3] = 0x13;
+  jump[0] = e2e_crc(CtrlCmd::kE2eDataId, jump);
+  std::memcpy(j.data, jump, 8);
+  any.ctrl_cmd.clamp_force_cmd_N = -1.0f;
+  r = rx.receive(j, any);
+  CHECK(r.e2e == E2eStatus::WrongSequence);
+  CHECK(r.codec == CodecStatus::Ok);
+  CHECK_FALSE(r.accepted());
+  CHECK(any.ctrl_cmd.clamp_force_cmd_N == -1.0f);
+  CHECK(rx.checker(MessageId::CtrlCmd).last_counter() == 9);
+  for (const E2eStatus expect : {E2eStatus::Sync, E2eStatus::Ok}) {
+    jump[1] = static_cast<uint8_t>(jump[1] + 1);
+    jump[0] = e2e_crc(CtrlCmd::kE2eDataId, jump);
+    std::memcpy(j.data, jump, 8);
+    r = rx.receive(j, any);
+    CHECK(r.e2e == expect);
+  }
+  CHECK(r.accepted());
+  CHECK(any.ctrl_cmd.clamp_force_cmd_N == 5000.0f);
 }
 
 TEST_CASE("timeout reaction values come from the DBC") {
@@ -360,8 +395,22 @@ TEST_CASE("timeout reaction values come from the DBC") {
   last.clamp_force_cmd_N = 3000.0f;
   last.driver_torque_req_Nm = 150.0f;
   const CtrlCmd t = on_rx_timeout(last);
-  CHECK(t.clamp_force_cmd_N == 20000.0f);  // Substitute: high clamp
-  CHECK(t.driver_torque_req_Nm == 0.0f);   // Replace: init
+  CHECK(t.clamp_force_cmd_N == 3000.0f);  // Ramp: starts from the last value
+  CHECK(t.driver_torque_req_Nm == 150.0f);
+  // Ramp: 50000 N/s toward 20000 N, 250 N m/s toward 0, never past.
+  const CtrlCmd r = rx_timeout_ramp(t, 0.125f);
+  CHECK(r.clamp_force_cmd_N == 3000.0f + 6250.0f);
+  CHECK(r.driver_torque_req_Nm == 150.0f - 31.25f);
+  const CtrlCmd end = rx_timeout_ramp(t, 10.0f);
+  CHECK(end.clamp_force_cmd_N == 20000.0f);
+  CHECK(end.driver_torque_req_Nm == 0.0f);
+  CtrlCmd high;
+  high.clamp_force_cmd_N = 30000.0f;
+  high.driver_torque_req_Nm = -100.0f;
+  const CtrlCmd down = rx_timeout_ramp(high, 0.125f);
+  CHECK(down.clamp_force_cmd_N == 30000.0f - 6250.0f);  // toward 20 kN from above too
+  CHECK(down.driver_torque_req_Nm == -100.0f + 31.25f);
+  CHECK(ramp_toward(5.0f, 5.0f, 1.0f) == 5.0f);
   HarnessLoad h;
   h.load_override_active = true;
   h.load_torque_override_Nm = 80.0f;

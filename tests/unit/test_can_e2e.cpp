@@ -153,7 +153,7 @@ TEST_CASE("checker: lost frames within max_delta are OK and counted, beyond are 
   (void)make(p, 0);  // 3 lost
   (void)make(p, 0);  // 4 lost
   CHECK(c.check(make(p, 0).d) == E2eStatus::WrongSequence);  // 5, delta 3
-  CHECK(c.last_counter() == 2);
+  CHECK(c.lost_frames() == 3);  // 1, and the 2 the jump skipped
 
   E2eChecker strict(kId, E2eCheckerConfig{1});
   E2eProtector q(kId);
@@ -170,30 +170,95 @@ TEST_CASE("checker: counter value 15 with a valid CRC is WRONG_SEQUENCE") {
   CHECK_FALSE(c.synced());
 }
 
-TEST_CASE("checker never advances its stored counter on a rejected frame") {
+TEST_CASE("checker: rejected frames never move the reference; a jump is never used") {
   // Frames with every counter value, all with valid CRCs, as a replaying
   // tunnel could deliver them.
   E2eProtector p(kId);
   Frame by_counter[15];
   for (int i = 0; i < 15; ++i) by_counter[i] = make(p, 7);
 
-  E2eChecker c(kId, E2eCheckerConfig{2});
-  REQUIRE(c.check(by_counter[5].d) == E2eStatus::Ok);
-  // Stale frames far ahead: rejected. A checker that adopted 12 here would
-  // accept 13 next, and then replay the whole stale burst.
-  CHECK(c.check(by_counter[12].d) == E2eStatus::WrongSequence);
-  CHECK(c.last_counter() == 5);
-  CHECK(c.check(by_counter[13].d) == E2eStatus::WrongSequence);
-  CHECK(c.last_counter() == 5);
-  // Bad CRC carrying the next counter: rejected, counter unchanged.
-  Frame corrupt = by_counter[6];
-  corrupt.d[7] ^= 0x10;
-  CHECK(c.check(corrupt.d) == E2eStatus::WrongCrc);
-  CHECK(c.check(by_counter[5].d) == E2eStatus::Repeated);
-  CHECK(c.last_counter() == 5);
-  // The genuine next frame is still accepted.
-  CHECK(c.check(by_counter[6].d) == E2eStatus::Ok);
-  CHECK(c.last_counter() == 6);
+  SUBCASE("sync_counter_init 0: the reference stays on the last good counter") {
+    E2eChecker c(kId, E2eCheckerConfig{2, 0});
+    REQUIRE(c.check(by_counter[5].d) == E2eStatus::Ok);
+    // Stale frames far ahead: rejected, and 13 after 12 too.
+    CHECK(c.check(by_counter[12].d) == E2eStatus::WrongSequence);
+    CHECK(c.last_counter() == 5);
+    CHECK(c.check(by_counter[13].d) == E2eStatus::WrongSequence);
+    CHECK(c.last_counter() == 5);
+    // Bad CRC carrying the next counter: rejected, counter unchanged.
+    Frame corrupt = by_counter[6];
+    corrupt.d[7] ^= 0x10;
+    CHECK(c.check(corrupt.d) == E2eStatus::WrongCrc);
+    CHECK(c.check(by_counter[5].d) == E2eStatus::Repeated);
+    CHECK(c.last_counter() == 5);
+    // The genuine next frame is still accepted.
+    CHECK(c.check(by_counter[6].d) == E2eStatus::Ok);
+    CHECK(c.last_counter() == 6);
+    CHECK(c.resyncs() == 0);
+  }
+  SUBCASE("sync_counter_init 2: the jump and the next two in-sequence frames are not used") {
+    E2eChecker c(kId, E2eCheckerConfig{2, 2});
+    REQUIRE(c.check(by_counter[5].d) == E2eStatus::Ok);
+    Frame corrupt = by_counter[12];
+    corrupt.d[7] ^= 0x10;
+    CHECK(c.check(corrupt.d) == E2eStatus::WrongCrc);  // a bad CRC never re-synchronises
+    CHECK(c.last_counter() == 5);
+    CHECK(c.check(by_counter[12].d) == E2eStatus::WrongSequence);  // new reference, not used
+    CHECK(c.last_counter() == 12);
+    CHECK(c.resynchronising());
+    CHECK(c.check(by_counter[12].d) == E2eStatus::Repeated);  // repeats neither count nor reset
+    CHECK(c.check(by_counter[13].d) == E2eStatus::Sync);
+    CHECK(c.check(by_counter[14].d) == E2eStatus::Sync);
+    CHECK_FALSE(c.resynchronising());
+    CHECK(c.check(by_counter[0].d) == E2eStatus::Ok);
+    CHECK(c.resyncs() == 1);
+  }
+}
+
+TEST_CASE("checker: re-synchronisation after lost frames, Profile 1 state machine") {
+  for (const uint8_t n : {uint8_t{1}, uint8_t{2}, uint8_t{3}}) {
+    CAPTURE(n);
+    E2eProtector p(kId);
+    E2eChecker c(kId, E2eCheckerConfig{2, n});
+    for (int i = 0; i < 4; ++i) REQUIRE(c.check(make(p, 0).d) == E2eStatus::Ok);
+    for (int i = 0; i < 3; ++i) (void)make(p, 0);  // three frames lost: delta 4
+    CHECK(c.check(make(p, 0).d) == E2eStatus::WrongSequence);
+    for (uint8_t k = 0; k < n; ++k) CHECK(c.check(make(p, 0).d) == E2eStatus::Sync);
+    CHECK(c.check(make(p, 0).d) == E2eStatus::Ok);
+    CHECK(c.lost_frames() == 3);
+    // Within max_delta while re-synchronising: still Sync, and counted.
+    for (int i = 0; i < 5; ++i) (void)make(p, 0);
+    CHECK(c.check(make(p, 0).d) == E2eStatus::WrongSequence);
+    (void)make(p, 0);
+    CHECK(c.check(make(p, 0).d) == E2eStatus::Sync);  // delta 2
+    CHECK(c.lost_frames() == 3 + 5 + 1);
+    CHECK(c.resyncs() == 2);
+  }
+}
+
+TEST_CASE("checker: after a receive timeout a repeated frame stays REPEATED, fresh frames re-synchronise") {
+  E2eProtector p(kId);
+  E2eChecker c(kId, E2eCheckerConfig{2, 1});
+  Frame last{};
+  for (int i = 0; i < 5; ++i) {
+    last = make(p, 0);
+    REQUIRE(c.check(last.d) == E2eStatus::Ok);
+  }
+  // A frozen sender keeps sending its last frame; the deadline expires.
+  c.require_resync();
+  for (int i = 0; i < 10; ++i) CHECK(c.check(last.d) == E2eStatus::Repeated);
+  CHECK(c.last_counter() == 4);
+  // The sender runs again: the counter has to advance, then one Sync frame.
+  CHECK(c.check(make(p, 0).d) == E2eStatus::Sync);
+  CHECK(c.check(make(p, 0).d) == E2eStatus::Ok);
+  // sync_counter_init 0: the first advanced frame is used at once.
+  E2eChecker now(kId, E2eCheckerConfig{2, 0});
+  REQUIRE(now.check(last.d) == E2eStatus::Ok);
+  now.require_resync();
+  CHECK(now.check(last.d) == E2eStatus::Repeated);
+  E2eProtector q(kId);
+  for (int i = 0; i < 5; ++i) (void)make(q, 0);
+  CHECK(now.check(make(q, 0).d) == E2eStatus::Ok);  // counter 5 after 4
 }
 
 TEST_CASE("checker: evaluate() is const and commit() ignores rejected verdicts") {
@@ -218,11 +283,20 @@ TEST_CASE("checker: NONEW_DATA, reset and event messages (max_delta 14)") {
   CHECK(c.check(make(p, 0).d) == E2eStatus::Ok);
   for (int i = 0; i < 9; ++i) (void)make(p, 0);
   CHECK(c.check(make(p, 0).d) == E2eStatus::Ok);  // jump of 10 accepted
-  // Sender restarts from 0: after reset() the receiver resynchronises.
-  E2eProtector restarted(kId);
-  E2eChecker s(kId, E2eCheckerConfig{2});
-  for (int i = 0; i < 8; ++i) REQUIRE(s.check(make(p, 1).d) == E2eStatus::Ok);
+  // Sender restarts from 0 (counter 0 after 8 here): re-synchronised by
+  // the state machine, or at once after reset() (a new run).
+  E2eProtector restarted(kId), again(kId);
+  E2eChecker s(kId, E2eCheckerConfig{2, 1});
+  E2eChecker r(kId, E2eCheckerConfig{2, 1});
+  E2eProtector q(kId);
+  for (int i = 0; i < 9; ++i) {
+    const Frame f = make(q, 1);
+    REQUIRE(s.check(f.d) == E2eStatus::Ok);
+    REQUIRE(r.check(f.d) == E2eStatus::Ok);
+  }
   CHECK(s.check(make(restarted, 1).d) == E2eStatus::WrongSequence);
-  s.reset();
+  CHECK(s.check(make(restarted, 1).d) == E2eStatus::Sync);
   CHECK(s.check(make(restarted, 1).d) == E2eStatus::Ok);
+  r.reset();
+  CHECK(r.check(make(again, 1).d) == E2eStatus::Ok);
 }

@@ -36,7 +36,13 @@ const char kUsage[] =
     "  --log-clock CLOCK     log timestamps: host (CLOCK_MONOTONIC, default) or sim\n"
     "  --summary FILE        write the JSON summary to FILE (default stdout)\n"
     "  --sched-fifo PRIO     real time: try SCHED_FIFO at PRIO (1..99) and mlockall\n"
-    "  --ready-file FILE     created once the interface is open\n"
+    "  --cmd-timeout-reaction R\n"
+    "                        what the plant applies while CtrlCmd is timed out:\n"
+    "                        dbc (default): the DBC's ramps from the last applied\n"
+    "                        values (clamp to 20 kN at 50 kN/s, torque to 0 at\n"
+    "                        250 N m/s); hold-last: keep the last applied values\n"
+    "  --ready-file FILE     created once the bridge serves the bus (interface open, scene\n"
+    "                        loaded, priority set, real time started)\n"
     "  -h, --help            this text\n"
     "Exit status: 0 done, 1 run failure (interface, scene), 2 bad command line.\n";
 
@@ -49,6 +55,7 @@ struct Options {
   std::string log, summary, ready_file;
   bool log_sim_clock = false;
   int sched_fifo = 0;
+  cvt::sil::CmdTimeoutReaction cmd_reaction = cvt::sil::CmdTimeoutReaction::Dbc;
 };
 
 [[noreturn]] void bad_usage(const std::string& msg) {
@@ -74,7 +81,8 @@ Options parse(int argc, char** argv) {
       std::exit(0);
     }
     static const char* const kValueFlags[] = {"--iface", "--scene", "--mode", "--duration-s", "--idle-exit-s", "--log",
-                                              "--log-clock", "--summary", "--ready-file", "--sched-fifo"};
+                                              "--log-clock", "--summary", "--ready-file", "--sched-fifo",
+                                              "--cmd-timeout-reaction"};
     bool known = false;
     for (const char* k : kValueFlags) known = known || a == k;
     if (!known) bad_usage(a.rfind("--", 0) == 0 ? "unknown option '" + a + "'" : "unexpected argument '" + a + "'");
@@ -93,6 +101,10 @@ Options parse(int argc, char** argv) {
       const std::string c = v;
       if (c == "sim") o.log_sim_clock = true;
       else if (c != "host") bad_usage("--log-clock: expected host or sim, got '" + c + "'");
+    } else if (a == "--cmd-timeout-reaction") {
+      const std::string r = v;
+      if (r == "hold-last") o.cmd_reaction = cvt::sil::CmdTimeoutReaction::HoldLast;
+      else if (r != "dbc") bad_usage("--cmd-timeout-reaction: expected dbc or hold-last, got '" + r + "'");
     } else if (a == "--summary") o.summary = v;
     else if (a == "--ready-file") o.ready_file = v;
     else if (a == "--sched-fifo") {
@@ -141,18 +153,23 @@ void print_summary(std::FILE* out, const Options& o, const cvt::sil::Bridge& b,
   std::fprintf(out, "{\n  \"scene\": \"%s\",\n  \"iface\": \"%s\",\n", s ? s->name : "", o.iface.c_str());
   std::fprintf(out, "  \"final_mode\": \"%s\",\n  \"plant_fault\": \"%s\",\n", cvt::can::to_string(b.mode()),
                cvt::rom_fault_name(b.plant().fault()));
-  std::fprintf(out, "  \"frames\": %ld,\n  \"sim_time_s\": %.6f,\n  \"steps_requested\": %llu,\n  \"groups_sent\": %llu,\n",
+  std::fprintf(out,
+               "  \"frames\": %ld,\n  \"sim_time_s\": %.6f,\n  \"steps_requested\": %llu,\n  \"groups_sent\": %llu,\n"
+               "  \"groups_resent\": %llu,\n",
                b.plant().frames(), static_cast<double>(b.sim_ns()) * 1e-9,
-               static_cast<unsigned long long>(b.steps_requested()), static_cast<unsigned long long>(b.groups_sent()));
+               static_cast<unsigned long long>(b.steps_requested()), static_cast<unsigned long long>(b.groups_sent()),
+               static_cast<unsigned long long>(b.groups_resent()));
   auto u = [](std::uint64_t v) { return static_cast<unsigned long long>(v); };
   std::fprintf(out,
                "  \"rx\": {\"accepted\": %llu, \"rejected\": %llu, \"not_data_frame\": %llu, \"unknown_id\": %llu, "
                "\"wrong_dlc\": %llu, \"wrong_crc\": %llu, \"repeated\": %llu, \"wrong_sequence\": %llu, "
                "\"out_of_range\": %llu, \"invalid_enum\": %llu, \"error_frames\": %llu, \"stale_discarded\": %llu, "
-               "\"plant_ids_ignored\": %llu, \"requests_ignored\": %llu},\n",
+               "\"plant_ids_ignored\": %llu, \"requests_ignored\": %llu, \"resync_withheld\": %llu, "
+               "\"requests_resent\": %llu},\n",
                u(rx.accepted), u(rx.rejected()), u(rx.not_data_frame), u(rx.unknown_id), u(rx.wrong_dlc),
                u(rx.wrong_crc), u(rx.repeated), u(rx.wrong_sequence), u(rx.out_of_range), u(rx.invalid_enum),
-               u(rx.error_frames), u(rx.stale_discarded), u(rx.plant_ids_ignored), u(rx.requests_ignored));
+               u(rx.error_frames), u(rx.stale_discarded), u(rx.plant_ids_ignored), u(rx.requests_ignored),
+               u(rx.resync_withheld), u(rx.requests_resent));
   std::fprintf(out,
                "  \"tx\": {\"sent\": %llu, \"failed\": %llu, \"bus_off_refused\": %llu, \"saturated\": %llu, "
                "\"enobufs_retries\": %llu, \"dropped\": %llu},\n",
@@ -160,8 +177,10 @@ void print_summary(std::FILE* out, const Options& o, const cvt::sil::Bridge& b,
                u(tc.tx_dropped));
   std::fprintf(out, "  \"bus\": {\"bus_off_events\": %llu, \"rx_kernel_drops\": %llu, \"rx_invalid\": %llu},\n",
                u(tc.bus_off_events), u(tc.rx_kernel_drops), u(tc.rx_invalid));
-  std::fprintf(out, "  \"cmd_timeouts\": %llu,\n  \"load_timeouts\": %llu,\n", u(b.cmd_timeouts()),
-               u(b.load_timeouts()));
+  std::fprintf(out, "  \"cmd\": {\"lost_frames\": %llu, \"resyncs\": %llu, \"superseded\": %llu},\n",
+               u(b.cmd_checker().lost_frames()), u(b.cmd_checker().resyncs()), u(rx.cmd_superseded));
+  std::fprintf(out, "  \"cmd_timeouts\": %llu,\n  \"load_timeouts\": %llu,\n  \"cmd_timeout_reaction\": \"%s\",\n",
+               u(b.cmd_timeouts()), u(b.load_timeouts()), cvt::sil::to_string(b.cmd_timeout_reaction()));
   std::fprintf(out, "  \"realtime\": ");
   if (!rt.ran) {
     std::fprintf(out, "null\n}\n");
@@ -218,22 +237,25 @@ int main(int argc, char** argv) {
   CandumpLog log(logf, o.iface, o.log_sim_clock);
   cvt::port::PosixMonotonicClock clock;
   static cvt::sil::Bridge bridge(bus, clock, logf != nullptr ? &log : nullptr);
+  bridge.set_cmd_timeout_reaction(o.cmd_reaction);
   if (!bridge.load_scene(*cvt::find_builtin_scene(o.scene.c_str()))) {
     std::fprintf(stderr, "cvtplant-bridge: scene %s: this bridge has no plant for its features/frame\n",
                  o.scene.c_str());
     return 1;
   }
-  if (!o.ready_file.empty()) {
-    if (std::FILE* r = std::fopen(o.ready_file.c_str(), "w")) std::fclose(r);
-  }
-
   RtReport rt;
   std::vector<std::int64_t> lateness;
+  // Priority and locked memory first: mlockall can take seconds in a starved
+  // VM, and neither the command deadline (monitored from real-time entry)
+  // nor a peer waiting for the ready file should count that time.
+  if (o.sched_fifo > 0) try_realtime_priority(o.sched_fifo, rt);
   if (o.realtime) {
     lateness.reserve(static_cast<std::size_t>(o.duration_s * 1e9 / static_cast<double>(bridge.frame_ns())) + 16);
     bridge.start_realtime();
   }
-  if (o.sched_fifo > 0) try_realtime_priority(o.sched_fifo, rt);
+  if (!o.ready_file.empty()) {
+    if (std::FILE* r = std::fopen(o.ready_file.c_str(), "w")) std::fclose(r);
+  }
   const std::int64_t end_ns = static_cast<std::int64_t>(o.duration_s * 1e9 + 0.5);
   std::int64_t last_rx_ns = clock.now_ns();
   std::uint64_t seen = 0;

@@ -1,12 +1,14 @@
 // cvtplant-controller: the example controller as a free-running ECU
-// (docs/sil.md#controller): every 10 ms (the CtrlCmd cycle, absolute
-// deadlines on the port layer's monotonic clock) it reads the bus and sends
-// CtrlCmd. For the bridge's real-time mode; in lock-step, cvtplant-sil runs
-// the same ControllerNode in step with the harness.
+// (docs/sil.md#controller-schedule): one control step per plant output group
+// (ControlSchedule: as soon as a fresh group is complete, at most one per
+// 5 ms, and at least one per 15 ms), or with --schedule fixed every 10 ms on
+// its own clock. For the bridge's real-time mode; in lock-step, cvtplant-sil
+// runs the same ControllerNode in step with the harness.
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 
+#include "cvtctl/control_schedule.hpp"
 #include "cvtctl/controller_node.hpp"
 #include "cvtplant/port/posix_clock.hpp"
 #include "stop_flag.hpp"
@@ -15,10 +17,13 @@
 namespace {
 
 const char kUsage[] =
-    "usage: cvtplant-controller [--iface NAME] [--demand-Nm T] [--duration-s S]\n"
-    "The example clamping-force controller on SocketCAN, one control period per\n"
-    "10 ms of host time, until S seconds passed (0 = until SIGINT/SIGTERM).\n"
-    "Prints its counters as JSON at the end. Exit 0, 1 (interface), 2 (usage).\n";
+    "usage: cvtplant-controller [--iface NAME] [--demand-Nm T] [--duration-s S] [--schedule group|fixed]\n"
+    "The example clamping-force controller on SocketCAN until S seconds passed\n"
+    "(0 = until SIGINT/SIGTERM). --schedule group (default): one control step per\n"
+    "fresh plant output group, 5 ms apart at least, 15 ms at most; fixed: every\n"
+    "10 ms of host time, whatever arrived. Prints its counters as JSON at the end,\n"
+    "fresh_fraction = control steps with a fresh group / all steps.\n"
+    "Exit 0, 1 (interface), 2 (usage).\n";
 
 [[noreturn]] void bad_usage(const char* msg, const char* v) {
   std::fprintf(stderr, "cvtplant-controller: %s%s (see --help)\n", msg, v);
@@ -41,19 +46,24 @@ double number(const char* flag, const char* v, double lo, double hi) {
 int main(int argc, char** argv) {
   const char* iface = "vcan0";
   double demand_Nm = 50, duration_s = 0;
+  bool fixed = false;
   for (int i = 1; i < argc; ++i) {
     const char* a = argv[i];
     if (!std::strcmp(a, "-h") || !std::strcmp(a, "--help")) {
       std::fputs(kUsage, stdout);
       return 0;
     }
-    const bool known = !std::strcmp(a, "--iface") || !std::strcmp(a, "--demand-Nm") || !std::strcmp(a, "--duration-s");
+    const bool known = !std::strcmp(a, "--iface") || !std::strcmp(a, "--demand-Nm") ||
+                       !std::strcmp(a, "--duration-s") || !std::strcmp(a, "--schedule");
     if (!known) bad_usage("unknown option ", a);
     if (i + 1 >= argc) bad_usage("missing value for ", a);
     const char* v = argv[++i];
     if (!std::strcmp(a, "--iface")) iface = v;
     else if (!std::strcmp(a, "--demand-Nm")) demand_Nm = number(a, v, -600, 600);
-    else duration_s = number(a, v, 0, 1e6);
+    else if (!std::strcmp(a, "--schedule")) {
+      if (!std::strcmp(v, "fixed")) fixed = true;
+      else if (std::strcmp(v, "group") != 0) bad_usage("--schedule: expected group or fixed, got ", v);
+    } else duration_s = number(a, v, 0, 1e6);
   }
   cvt::hil::install_stop_handlers();
   cvt::port::SocketCanTransport bus;
@@ -63,24 +73,43 @@ int main(int argc, char** argv) {
   }
   cvt::port::PosixMonotonicClock clock;
   cvtctl::ControllerNode node(bus);
+  cvtctl::ControlSchedule sched;
   constexpr std::int64_t kPeriod_ns = std::int64_t{cvt::can::CtrlCmd::kCycleTime_ms} * 1000000;
   const std::int64_t t0 = clock.now_ns();
   const auto end = t0 + static_cast<std::int64_t>(duration_s * 1e9);
-  std::int64_t deadline = t0;
-  long periods = 0, late = 0;
+  std::int64_t deadline = t0, last = t0, max_gap = 0;
+  long periods = 0;
   while (!cvt::hil::stop_requested() && (duration_s == 0 || clock.now_ns() < end)) {
-    node.poll(0);
+    std::int64_t now = clock.now_ns();
+    if (fixed) {
+      node.poll(0);
+    } else {
+      // Wait for a fresh group, at most until the schedule's deadline.
+      while (!cvt::hil::stop_requested() && !sched.due(now, node.fresh_group())) {
+        if (node.fresh_group()) clock.sleep_until(sched.earliest_ns());
+        else node.poll(sched.wait_until_ns() - now);
+        now = clock.now_ns();
+      }
+      node.poll(0);  // whatever else is queued: the newest group wins
+    }
     node.control_step(static_cast<float>(demand_Nm));
+    if (periods > 0 && now - last > max_gap) max_gap = now - last;
+    last = now;
+    sched.ran(now);
     ++periods;
-    deadline += kPeriod_ns;
-    if (clock.now_ns() > deadline) ++late;
-    clock.sleep_until(deadline);
+    if (fixed) {
+      deadline += kPeriod_ns;
+      clock.sleep_until(deadline);
+    }
   }
   const cvtctl::ControllerCounters& c = node.counters();
   std::printf(
-      "{\"periods\": %ld, \"late_periods\": %ld, \"accepted\": %u, \"rejected\": %u, \"error_frames\": %u, "
-      "\"invalid_periods\": %u, \"tx_failed\": %u, \"last_clamp_cmd_N\": %.0f}\n",
-      periods, late, c.accepted, c.rejected, c.error_frames, c.invalid_periods, c.tx_failed,
+      "{\"schedule\": \"%s\", \"periods\": %ld, \"fresh_periods\": %u, \"invalid_periods\": %u, "
+      "\"fresh_fraction\": %.4f, \"max_step_gap_ms\": %.3f, \"accepted\": %u, \"rejected\": %u, "
+      "\"resync_withheld\": %u, \"error_frames\": %u, \"tx_failed\": %u, \"last_clamp_cmd_N\": %.0f}\n",
+      fixed ? "fixed" : "group", periods, c.fresh_periods, c.invalid_periods,
+      periods > 0 ? static_cast<double>(c.fresh_periods) / static_cast<double>(periods) : 0.0,
+      static_cast<double>(max_gap) * 1e-6, c.accepted, c.rejected, c.resync_withheld, c.error_frames, c.tx_failed,
       static_cast<double>(node.last_output().clamp_force_cmd_N));
   return 0;
 }

@@ -4,8 +4,9 @@
 //
 // It collects the plant's output groups (PlantSpeeds, PlantRatio,
 // PlantForces with one sample_tag), runs ClampLaw once per control period and
-// sends CtrlCmd. A period whose group is incomplete, mixed (different tags)
-// or E2E-rejected runs the law with plant_data_valid = false.
+// sends CtrlCmd. A period without a fresh group (incomplete, mixed tags,
+// E2E-rejected, or the sample it already used, e.g. a group the plant sent
+// again) runs the law with plant_data_valid = false.
 #pragma once
 
 #include <cstdint>
@@ -19,8 +20,10 @@ namespace cvtctl {
 struct ControllerCounters {
   std::uint32_t accepted = 0;
   std::uint32_t rejected = 0;        // any receive-pipeline rejection
+  std::uint32_t resync_withheld = 0; // valid frames withheld while E2E re-synchronises (docs/can.md#e2e-checker)
   std::uint32_t error_frames = 0;
-  std::uint32_t invalid_periods = 0; // control periods without a complete group
+  std::uint32_t invalid_periods = 0; // control periods without a fresh group (stale inputs)
+  std::uint32_t fresh_periods = 0;   // control periods with a fresh group
   std::uint32_t tx_failed = 0;
 };
 
@@ -33,6 +36,14 @@ class ControllerNode {
     rx_.reset_all();
     law_.reset();
     have_speeds_ = have_ratio_ = have_forces_ = have_status_ = false;
+    last_used_tag_ = -1;
+  }
+
+  // The ECU itself restarts: as restart(), and its CtrlCmd counter starts
+  // again at 0 (docs/sil.md#controller-faults).
+  void reboot() {
+    tx_.reset();
+    restart();
   }
 
   // Handles every queued frame, waiting up to wait_ns for the first.
@@ -51,15 +62,23 @@ class ControllerNode {
   cvt::port::CanIoStatus control_step(float torque_demand_Nm) {
     ClampLawInputs in;
     in.torque_demand_Nm = torque_demand_Nm;
-    in.plant_data_valid = group_complete();
+    in.plant_data_valid = fresh_group();
     if (in.plant_data_valid) {
       in.torque_transmitted_Nm = speeds_.torque_transmitted_Nm;
       in.slip = ratio_.slip;
+      last_used_tag_ = speeds_.sample_tag;
+      ++counters_.fresh_periods;
     } else {
       ++counters_.invalid_periods;
     }
     last_out_ = law_.step(in);
     have_speeds_ = have_ratio_ = have_forces_ = have_status_ = false;
+    return send_command();
+  }
+
+  // The last command once more, with the next E2E counter (a controller that
+  // sends faster than its cycle; the SIL flood scenario uses it).
+  cvt::port::CanIoStatus send_command() {
     cvt::can::CtrlCmd cmd;
     cmd.clamp_force_cmd_N = last_out_.clamp_force_cmd_N;
     cmd.driver_torque_req_Nm = clamp_f(last_out_.driver_torque_req_Nm, -600.0f, 600.0f);
@@ -73,10 +92,16 @@ class ControllerNode {
     return st;
   }
 
+  // A complete group arrived since the last control step (all three frames
+  // with one sample_tag).
   bool group_complete() const {
     return have_speeds_ && have_ratio_ && have_forces_ && speeds_.sample_tag == ratio_.sample_tag &&
            speeds_.sample_tag == forces_.sample_tag;
   }
+  // ... and it is not the sample the last step already used: a group the
+  // plant sent again (docs/sil.md#lost-frames) carries the used sample's
+  // tag and comes before any newer sample.
+  bool fresh_group() const { return group_complete() && speeds_.sample_tag != last_used_tag_; }
   const cvt::can::PlantSpeeds& speeds() const { return speeds_; }
   const cvt::can::PlantRatio& ratio() const { return ratio_; }
   const cvt::can::PlantForces& forces() const { return forces_; }
@@ -104,12 +129,19 @@ class ControllerNode {
     }
     const cvt::can::RxResult r = rx_.receive(f, any_);
     if (!r.accepted()) {
-      ++counters_.rejected;
+      if (r.e2e == cvt::can::E2eStatus::Sync && r.codec == cvt::can::CodecStatus::Ok) ++counters_.resync_withheld;
+      else ++counters_.rejected;
       return;
     }
     ++counters_.accepted;
     switch (any_.which) {
-      case cvt::can::MessageId::PlantSpeeds: speeds_ = any_.plant_speeds; have_speeds_ = true; break;
+      case cvt::can::MessageId::PlantSpeeds:
+        speeds_ = any_.plant_speeds;
+        have_speeds_ = true;
+        // A newer sample is in: the used tag can come round again (4 bits)
+        // without meaning a repeat.
+        if (speeds_.sample_tag != last_used_tag_) last_used_tag_ = -1;
+        break;
       case cvt::can::MessageId::PlantRatio: ratio_ = any_.plant_ratio; have_ratio_ = true; break;
       case cvt::can::MessageId::PlantForces: forces_ = any_.plant_forces; have_forces_ = true; break;
       case cvt::can::MessageId::PlantStatus: status_ = any_.plant_status; have_status_ = true; break;
@@ -127,6 +159,7 @@ class ControllerNode {
   cvt::can::PlantForces forces_{};
   cvt::can::PlantStatus status_{};
   bool have_speeds_ = false, have_ratio_ = false, have_forces_ = false, have_status_ = false;
+  int last_used_tag_ = -1;
   ClampLawOutputs last_out_{};
   ControllerCounters counters_{};
 };

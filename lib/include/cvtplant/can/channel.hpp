@@ -45,6 +45,10 @@ CodecStatus encode(const Msg& m, E2eProtector& protector, CanFrame& out) noexcep
   return CodecStatus::Ok;
 }
 
+// `out` is written only for an accepted frame (codec Ok, E2E Ok). A frame
+// with a valid CRC that is Sync or WrongSequence is value-checked too and, if
+// its values are valid, recorded by the checker (it re-synchronises on it),
+// but never written to `out` (docs/can.md#e2e-checker).
 template <class Msg>
 RxResult receive(const CanFrame& f, E2eChecker& checker, Msg& out) noexcept {
   RxResult r;
@@ -52,13 +56,21 @@ RxResult receive(const CanFrame& f, E2eChecker& checker, Msg& out) noexcept {
   if (r.codec != CodecStatus::Ok) return r;
   const E2eChecker::Verdict v = checker.evaluate(f.data);
   r.e2e = v.status;
-  if (v.status != E2eStatus::Ok) return r;
+  if (v.status != E2eStatus::Ok && v.status != E2eStatus::Sync && v.status != E2eStatus::WrongSequence) return r;
   Msg tmp;
   r.codec = unpack(f.data, tmp);
   if (r.codec != CodecStatus::Ok) return r;
   checker.commit(v);
-  out = tmp;
+  if (v.status == E2eStatus::Ok) out = tmp;
   return r;
+}
+
+// The substitute of a Ramp timeout action (docs/can.md#timeouts): `v` moved
+// toward `target` by at most `max_step` (>= 0), never past it.
+constexpr float ramp_toward(float v, float target, float max_step) noexcept {
+  if (v < target) return target - v > max_step ? v + max_step : target;
+  if (v > target) return v - target > max_step ? v - max_step : target;
+  return v;
 }
 
 template <class Msg>
@@ -81,11 +93,13 @@ class RxChannel {
     return cvt::can::receive(f, checker_, out);
   }
   // Call on the deadline-monitoring timeout (docs/can.md#timeouts).
+  void require_resync() noexcept { checker_.require_resync(); }
+  // A new run: forget the sender.
   void reset() noexcept { checker_.reset(); }
   const E2eChecker& checker() const noexcept { return checker_; }
 
  private:
-  E2eChecker checker_{Msg::kE2eDataId, E2eCheckerConfig{Msg::kE2eMaxDeltaCounter}};
+  E2eChecker checker_{Msg::kE2eDataId, E2eCheckerConfig{Msg::kE2eMaxDeltaCounter, Msg::kE2eSyncCounterInit}};
 };
 
 }  // namespace cvt::can

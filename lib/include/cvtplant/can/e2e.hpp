@@ -74,26 +74,38 @@ enum class E2eStatus : uint8_t {
   WrongSequence,  // CRC good, counter jumped by more than max_delta, or is 15
   WrongCrc,       // CRC (including the data ID) does not match
   NoNewData,      // no frame arrived in this check cycle
+  Sync,           // CRC good, counter in sequence, but re-synchronising: not used yet
 };
 
 struct E2eCheckerConfig {
   // Largest accepted counter jump: 1 accepts only consecutive frames; 2
   // tolerates one lost frame; 14 rejects only exact repeats (event messages).
   uint8_t max_delta_counter = 2;
+  // Profile 1's SyncCounterInit: after a counter jump (or a receive timeout)
+  // this many in-sequence frames are checked but reported as Sync, not Ok;
+  // the frame after them is Ok again. 0: a jump is never adopted (the
+  // checker keeps its reference) and a timeout needs no re-synchronisation.
+  uint8_t sync_counter_init = 1;
 };
 
-// Receiver side. The stored counter changes only through commit(), which the
-// caller invokes for frames it actually applies; evaluate() is const. A
-// rejected frame therefore can never move the reference a later stale frame
-// is compared against (docs/can.md#e2e-checker). After WrongSequence the
-// checker stays on the last good counter until reset(), which the receiver
-// calls on its deadline-monitoring timeout (docs/can.md#timeouts).
+// Receiver side, AUTOSAR E2E Profile 1's check state machine
+// (docs/can.md#e2e-checker). The stored counter changes only through
+// commit(), which the caller invokes for frames that also passed its own
+// checks (range, enum); evaluate() is const. Frames that fail the CRC, repeat
+// the last counter or fail the caller's checks therefore never move the
+// reference. A frame with a valid CRC whose counter jumped by more than
+// max_delta is not used, but (sync_counter_init > 0) becomes the new
+// reference; the next sync_counter_init in-sequence frames are reported as
+// Sync and not used either, then frames are Ok again. After a receive
+// timeout the receiver calls require_resync(): the reference is kept (a
+// frozen sender's repeated frame stays Repeated) and the same number of
+// in-sequence frames must pass before one is used.
 class E2eChecker {
  public:
   struct Verdict {
     E2eStatus status;
     uint8_t counter;  // received counter
-    uint8_t delta;    // counter jump versus the last accepted frame (0 when first)
+    uint8_t delta;    // counter jump versus the reference (0 when first or 15)
   };
 
   constexpr E2eChecker(uint16_t data_id, E2eCheckerConfig cfg = {}) noexcept
@@ -107,16 +119,32 @@ class E2eChecker {
     const uint8_t delta = static_cast<uint8_t>((c + kE2eCounterModulo - last_) % kE2eCounterModulo);
     if (delta == 0) return {E2eStatus::Repeated, c, 0};
     if (delta > cfg_.max_delta_counter) return {E2eStatus::WrongSequence, c, delta};
+    if (sync_left_ > 0) return {E2eStatus::Sync, c, delta};
     return {E2eStatus::Ok, c, delta};
   }
 
-  // Accept a frame evaluated as Ok. Any other verdict is ignored, so calling
-  // commit() unconditionally is still safe.
+  // Records a frame the caller checked in full. Ok and Sync move the
+  // reference; WrongSequence (valid CRC, counter 0..14) re-synchronises on
+  // it when sync_counter_init > 0. Repeated, WrongCrc and NoNewData change
+  // nothing, so calling commit() for them is harmless.
   constexpr void commit(const Verdict& v) noexcept {
-    if (v.status != E2eStatus::Ok) return;
-    if (synced_ && v.delta > 1) lost_frames_ += static_cast<uint32_t>(v.delta - 1u);
-    last_ = v.counter;
-    synced_ = true;
+    switch (v.status) {
+      case E2eStatus::Ok:
+      case E2eStatus::Sync:
+        if (synced_ && v.delta > 1) lost_frames_ += static_cast<uint32_t>(v.delta - 1u);
+        if (v.status == E2eStatus::Sync) --sync_left_;
+        last_ = v.counter;
+        synced_ = true;
+        break;
+      case E2eStatus::WrongSequence:
+        if (!synced_ || v.counter >= kE2eCounterModulo || cfg_.sync_counter_init == 0) break;
+        lost_frames_ += static_cast<uint32_t>(v.delta - 1u);
+        last_ = v.counter;
+        sync_left_ = cfg_.sync_counter_init;
+        ++resyncs_;
+        break;
+      default: break;
+    }
   }
 
   // evaluate + commit for receivers that have no further checks of their own.
@@ -128,22 +156,39 @@ class E2eChecker {
 
   static constexpr E2eStatus no_new_data() noexcept { return E2eStatus::NoNewData; }
 
+  // The receiver's deadline expired (docs/can.md#timeouts): keep the
+  // reference and require sync_counter_init in-sequence frames again.
+  constexpr void require_resync() noexcept {
+    if (!synced_ || cfg_.sync_counter_init == 0) return;
+    sync_left_ = cfg_.sync_counter_init;
+    ++resyncs_;
+  }
+
+  // Forget the sender entirely (a new run): the next valid frame is Ok.
   constexpr void reset() noexcept {
     synced_ = false;
     last_ = 0;
+    sync_left_ = 0;
   }
 
   constexpr bool synced() const noexcept { return synced_; }
+  constexpr bool resynchronising() const noexcept { return sync_left_ > 0; }
   constexpr uint8_t last_counter() const noexcept { return last_; }
+  // Frames the counter says were lost (gaps of accepted, synced and adopted frames).
   constexpr uint32_t lost_frames() const noexcept { return lost_frames_; }
+  // Re-synchronisations started (counter jumps adopted, timeouts).
+  constexpr uint32_t resyncs() const noexcept { return resyncs_; }
   constexpr uint16_t data_id() const noexcept { return data_id_; }
+  constexpr const E2eCheckerConfig& config() const noexcept { return cfg_; }
 
  private:
   uint16_t data_id_;
   E2eCheckerConfig cfg_;
   uint8_t last_ = 0;
+  uint8_t sync_left_ = 0;
   bool synced_ = false;
   uint32_t lost_frames_ = 0;
+  uint32_t resyncs_ = 0;
 };
 
 inline const char* to_string(E2eStatus s) noexcept {
@@ -153,6 +198,7 @@ inline const char* to_string(E2eStatus s) noexcept {
     case E2eStatus::WrongSequence: return "WRONG_SEQUENCE";
     case E2eStatus::WrongCrc: return "WRONG_CRC";
     case E2eStatus::NoNewData: return "NONEW_DATA";
+    case E2eStatus::Sync: return "SYNC";
   }
   return "?";
 }

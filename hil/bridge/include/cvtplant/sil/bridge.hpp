@@ -20,6 +20,13 @@
 
 namespace cvt::sil {
 
+// PlantBusDiag.bus_state carries port::CanBusState's value.
+static_assert(static_cast<int>(can::BusState::ErrorActive) == static_cast<int>(port::CanBusState::ErrorActive) &&
+                  static_cast<int>(can::BusState::ErrorWarning) == static_cast<int>(port::CanBusState::ErrorWarning) &&
+                  static_cast<int>(can::BusState::ErrorPassive) == static_cast<int>(port::CanBusState::ErrorPassive) &&
+                  static_cast<int>(can::BusState::BusOff) == static_cast<int>(port::CanBusState::BusOff),
+              "DBC bus_state values must match port::CanBusState");
+
 // Receives every frame the bridge put on the bus (the candump log).
 class FrameSink {
  public:
@@ -40,15 +47,21 @@ struct RxCounts {
   std::uint64_t wrong_crc = 0;
   std::uint64_t repeated = 0;        // E2E counter equal to the last accepted one
   std::uint64_t wrong_sequence = 0;  // counter jump > max delta, or 15
+  std::uint64_t resync_withheld = 0; // valid, in sequence, but E2E re-synchronising: not used (not a rejection)
   std::uint64_t out_of_range = 0;
   std::uint64_t invalid_enum = 0;
   std::uint64_t error_frames = 0;    // reported, never decoded (docs/sil.md#robustness)
   std::uint64_t stale_discarded = 0; // drained after a command timeout (docs/can.md#timeouts)
-  std::uint64_t plant_ids_ignored = 0;  // valid plant-output IDs sent by another node
+  std::uint64_t plant_ids_ignored = 0;  // the plant's own output IDs sent by another node
   std::uint64_t requests_ignored = 0;   // e.g. Step while running in real time
+  std::uint64_t cmd_superseded = 0;     // valid CtrlCmd replaced before any frame used it
+  std::uint64_t requests_resent = 0;    // SimCtrl repeating the last step_seq: answered again, not executed
+  // PlantDiag.rejected_frames: every refused data frame. Not error frames
+  // (fault_bus_error), not re-synchronisation, not stale drains, not ignored
+  // requests (docs/sil.md#robustness).
   std::uint64_t rejected() const noexcept {
     return not_data_frame + unknown_id + wrong_dlc + wrong_crc + repeated + wrong_sequence + out_of_range +
-           invalid_enum;
+           invalid_enum + plant_ids_ignored;
   }
 };
 
@@ -99,6 +112,16 @@ std::uint32_t saturate_to_dbc(Msg& m) noexcept {
   return n;
 }
 
+// What the plant applies while CtrlCmd is timed out (docs/sil.md#timeouts).
+enum class CmdTimeoutReaction : std::uint8_t {
+  Dbc,       // the DBC's CvtTimeoutAction: ramps from the last applied values
+  HoldLast,  // every CtrlCmd signal keeps the last applied value
+};
+
+inline const char* to_string(CmdTimeoutReaction r) noexcept {
+  return r == CmdTimeoutReaction::HoldLast ? "hold-last" : "dbc";
+}
+
 class Bridge {
  public:
   enum class CmdState : std::uint8_t { NoneYet, Valid, TimedOut };
@@ -131,6 +154,9 @@ class Bridge {
 
   // Switch to real time now (also what SimCtrl RunRealTime does).
   void start_realtime() { enter_mode(can::PlantMode::RealTime); }
+
+  void set_cmd_timeout_reaction(CmdTimeoutReaction r) noexcept { cmd_reaction_ = r; }
+  CmdTimeoutReaction cmd_timeout_reaction() const noexcept { return cmd_reaction_; }
 
   // One paced frame (docs/sil.md#real-time): deadlines on the host clock,
   // then the receive queue (drained of stale commands after a timeout),
@@ -183,10 +209,12 @@ class Bridge {
   const RxCounts& rx() const noexcept { return rx_; }
   const TxCounts& tx() const noexcept { return tx_; }
   std::uint64_t cmd_timeouts() const noexcept { return cmd_timeouts_; }
+  const can::E2eChecker& cmd_checker() const noexcept { return rxbank_.checker(can::MessageId::CtrlCmd); }
   std::uint64_t load_timeouts() const noexcept { return load_timeouts_; }
   std::uint64_t rt_overruns() const noexcept { return rt_overruns_; }
   std::uint64_t steps_requested() const noexcept { return steps_requested_; }
   std::uint64_t groups_sent() const noexcept { return groups_sent_; }
+  std::uint64_t groups_resent() const noexcept { return groups_resent_; }
   bool fault_scene() const noexcept { return fault_scene_; }
   std::int64_t frame_ns() const noexcept { return plant_.frame_ns(); }
 
@@ -203,6 +231,7 @@ class Bridge {
     cmd_monitor_ = load_monitor_ = false;
     load_timed_out_ = false;
     drain_cmd_ = drain_load_ = false;
+    cmd_unused_ = false;
     // A new run may restart its counters at 0 (docs/sil.md#lock-step).
     rxbank_.reset(can::MessageId::CtrlCmd);
     rxbank_.reset(can::MessageId::HarnessLoad);
@@ -232,12 +261,18 @@ class Bridge {
     mode_ = m;
   }
 
+  // docs/sil.md#timeouts: the reaction starts from what the plant applies
+  // now (a command, or the scene's profile before the first one); the E2E
+  // checker keeps its reference and has to re-synchronise, so a frozen
+  // controller's repeated frame is never used again; flag; count once.
   void check_deadlines(std::int64_t now) {
     if (cmd_monitor_ && cmd_state_ != CmdState::TimedOut && now - cmd_last_ns_ >= kCmdTimeout_ns) {
-      // docs/can.md#timeouts: substitute/replace, reset the checker, flag, count.
-      cmd_ = can::on_rx_timeout(cmd_);
+      const RomInputs<double> u = current_inputs();
+      cmd_.clamp_force_cmd_N = static_cast<float>(u.clamp_N);
+      cmd_.driver_torque_req_Nm = static_cast<float>(u.tau_in_Nm);
+      if (cmd_reaction_ == CmdTimeoutReaction::Dbc) cmd_ = can::on_rx_timeout(cmd_);
       cmd_state_ = CmdState::TimedOut;
-      rxbank_.reset(can::MessageId::CtrlCmd);
+      rxbank_.require_resync(can::MessageId::CtrlCmd);
       ++cmd_timeouts_;
       cmd_timeout_since_status_ = true;
       drain_cmd_ = mode_ == can::PlantMode::RealTime;
@@ -245,7 +280,7 @@ class Bridge {
     if (load_monitor_ && !load_timed_out_ && now - load_last_ns_ >= kLoadTimeout_ns) {
       load_ = can::on_rx_timeout(load_);
       load_timed_out_ = true;
-      rxbank_.reset(can::MessageId::HarnessLoad);
+      rxbank_.require_resync(can::MessageId::HarnessLoad);
       ++load_timeouts_;
       load_timeout_since_status_ = true;
       drain_load_ = mode_ == can::PlantMode::RealTime;
@@ -258,12 +293,21 @@ class Bridge {
       return;
     }
     check_deadlines(deadline_now());
+    // A Ramp reaction advances one frame before the frame uses it, so the
+    // first timed-out frame already moves by one rate step, never by more.
+    if (cmd_state_ == CmdState::TimedOut && cmd_reaction_ == CmdTimeoutReaction::Dbc)
+      cmd_ = can::rx_timeout_ramp(cmd_, static_cast<float>(static_cast<double>(plant_.frame_ns()) * 1e-9));
+    cmd_unused_ = false;
     if (plant_.step(current_inputs()) != RomFault::none) mode_ = can::PlantMode::Fault;
   }
 
   void count_rejection(const can::RxResult& r) {
     using can::CodecStatus;
     using can::E2eStatus;
+    if (r.e2e == E2eStatus::Sync && r.codec == CodecStatus::Ok) {
+      ++rx_.resync_withheld;
+      return;
+    }
     if (r.e2e == E2eStatus::WrongCrc) ++rx_.wrong_crc;
     else if (r.e2e == E2eStatus::Repeated) ++rx_.repeated;
     else if (r.e2e == E2eStatus::WrongSequence) ++rx_.wrong_sequence;
@@ -277,7 +321,8 @@ class Bridge {
 
   static bool is_plant_output(std::uint32_t id) {
     return id == can::PlantSpeeds::kId || id == can::PlantRatio::kId || id == can::PlantForces::kId ||
-           id == can::PlantStatus::kId || id == can::PlantDiag::kId;
+           id == can::PlantStatus::kId || id == can::PlantDiag::kId || id == can::PlantBusDiag::kId ||
+           id == can::PlantCmdDiag::kId;
   }
 
   void handle_io(port::CanIoStatus st, const can::CanFrame& f, bool draining) {
@@ -289,7 +334,9 @@ class Bridge {
     }
     if (st != port::CanIoStatus::Ok) return;
     if (can::is_standard_data_frame(f) && is_plant_output(f.id)) {
+      // Another node sends with the plant's IDs: an ID conflict on the bus.
       ++rx_.plant_ids_ignored;
+      rejected_since_status_ = true;
       return;
     }
     // Frames queued while a command timed out are stale by definition: the
@@ -308,6 +355,8 @@ class Bridge {
     switch (any_.which) {
       case can::MessageId::SimCtrl: handle_sim_ctrl(any_.sim_ctrl); break;
       case can::MessageId::CtrlCmd:
+        if (cmd_unused_) ++rx_.cmd_superseded;
+        cmd_unused_ = true;
         cmd_ = any_.ctrl_cmd;
         cmd_state_ = CmdState::Valid;
         cmd_monitor_ = true;
@@ -323,7 +372,22 @@ class Bridge {
     }
   }
 
+  // docs/sil.md#lost-frames: a request that repeats the step_seq of the
+  // last executed one is the harness's resend after a lost reply (or a
+  // request it could not tell was lost): answer it again, execute nothing.
   void handle_sim_ctrl(const can::SimCtrl& m) {
+    if (have_last_seq_ && m.step_seq == last_seq_) {
+      ++rx_.requests_resent;
+      if (m.sim_request != can::SimRequest::RunRealTime && mode_ != can::PlantMode::RealTime)
+        send_group(m.step_seq, last_group_diag_, true, true);
+      return;
+    }
+    if (m.sim_request == can::SimRequest::Step && (mode_ == can::PlantMode::RealTime || !plant_.loaded())) {
+      ++rx_.requests_ignored;
+      return;
+    }
+    have_last_seq_ = true;
+    last_seq_ = m.step_seq;
     switch (m.sim_request) {
       case can::SimRequest::Reset: {
         const Scene* s = m.scene_id == can::SceneId::Keep ? plant_.scene() : builtin_scene_for(m.scene_id);
@@ -337,10 +401,6 @@ class Bridge {
         break;
       }
       case can::SimRequest::Step:
-        if (mode_ == can::PlantMode::RealTime || !plant_.loaded()) {
-          ++rx_.requests_ignored;
-          break;
-        }
         if (mode_ != can::PlantMode::Fault) enter_mode(can::PlantMode::LockStep);
         steps_requested_ += m.step_count;
         {
@@ -358,7 +418,7 @@ class Bridge {
         if (mode_ != can::PlantMode::Fault) enter_mode(can::PlantMode::Ready);
         send_group(m.step_seq, true);
         break;
-      case can::SimRequest::None: send_group(m.step_seq, false); break;
+      case can::SimRequest::None: send_group(m.step_seq, true); break;
     }
   }
 
@@ -385,13 +445,22 @@ class Bridge {
     return false;
   }
 
-  // docs/can.md#layout "Output groups": Speeds, Ratio, Forces, [Diag,] Status.
-  // In real time the 100 ms frames (Diag, Status) go out only on every
-  // tenth 10 ms group, as the DBC cycle times say; there step_seq_ack is 0
-  // because no request is being acknowledged.
-  void send_group(std::uint8_t step_seq, bool with_diag, bool with_status = true) {
+  // docs/can.md#layout "Output groups": Speeds, Ratio, Forces, [Diag,
+  // BusDiag, CmdDiag,] Status.
+  // In real time the 100 ms frames (the diagnostics, Status) go out only on
+  // every tenth 10 ms group, as the DBC cycle times say; there step_seq_ack
+  // is 0 because no request is being acknowledged.
+  // A resent group repeats the last group's sample_tag: same sample, the
+  // receivers can tell it from a new one.
+  void send_group(std::uint8_t step_seq, bool with_diag, bool with_status = true, bool resend = false) {
     const RomOutputs<double> o = plant_.loaded() ? plant_.outputs() : RomOutputs<double>{};
-    const auto tag = static_cast<std::uint8_t>(groups_sent_ & 0x0Fu);
+    const auto tag = resend ? last_group_tag_ : static_cast<std::uint8_t>(groups_sent_ & 0x0Fu);
+    if (resend) {
+      ++groups_resent_;
+    } else {
+      last_group_tag_ = tag;
+      last_group_diag_ = with_diag;
+    }
     auto f = [](double v) { return static_cast<float>(v); };
     can::PlantSpeeds sp{tag, f(o.omega1_rad_s), f(o.omega2_rad_s), f(o.torque_transmitted_Nm)};
     send(sp, tx_speeds_);
@@ -402,15 +471,28 @@ class Bridge {
     can::PlantForces fo{tag, f(o.clamp_force_N), f(o.clamp_force_N)};
     send(fo, tx_forces_);
     if (with_diag) {
+      // Counters wrap modulo 2^16 by design (docs/can.md#layout).
       can::PlantDiag d;
-      // Wrap modulo 2^16 by design (docs/can.md#layout).
       d.rejected_frames = static_cast<std::uint16_t>(rx_.rejected());
       d.cmd_timeouts = static_cast<std::uint16_t>(cmd_timeouts_);
       d.rt_overruns = static_cast<std::uint16_t>(rt_overruns_);
       send(d, tx_diag_);
+      const port::CanTransportCounters c = bus_.counters();
+      can::PlantBusDiag b;
+      b.bus_state = static_cast<can::BusState>(bus_.bus_state());
+      b.rx_kernel_drops = static_cast<std::uint16_t>(c.rx_kernel_drops);
+      b.tx_enobufs_retries = static_cast<std::uint16_t>(c.tx_enobufs_retries);
+      b.tx_dropped = static_cast<std::uint16_t>(c.tx_dropped);
+      send(b, tx_bus_diag_);
+      const can::E2eChecker& ck = rxbank_.checker(can::MessageId::CtrlCmd);
+      can::PlantCmdDiag cd;
+      cd.cmd_lost_frames = static_cast<std::uint16_t>(ck.lost_frames());
+      cd.cmd_resyncs = static_cast<std::uint16_t>(ck.resyncs());
+      cd.cmd_superseded = static_cast<std::uint16_t>(rx_.cmd_superseded);
+      send(cd, tx_cmd_diag_);
     }
     if (!with_status) {
-      ++groups_sent_;
+      if (!resend) ++groups_sent_;
       return;
     }
     can::PlantStatus s;
@@ -423,14 +505,18 @@ class Bridge {
     s.fault_bus_error = bus_error_since_status_ || bus_.bus_state() != port::CanBusState::ErrorActive;
     s.fault_scene = fault_scene_;
     s.fault_rx_rejected = rejected_since_status_;
+    const port::CanTransportCounters tc = bus_.counters();
+    const std::uint64_t dropped = tc.rx_kernel_drops + tc.tx_dropped;
+    s.fault_frames_dropped = dropped != dropped_at_status_;
     s.step_seq_ack = static_cast<std::uint8_t>(step_seq & 0x0Fu);
     s.sample_tag = tag;
     // Event flags are cleared only once a status carrying them is on the bus.
     if (send(s, tx_status_)) {
       cmd_timeout_since_status_ = load_timeout_since_status_ = overrun_since_status_ = false;
       bus_error_since_status_ = rejected_since_status_ = false;
+      dropped_at_status_ = dropped;
     }
-    ++groups_sent_;
+    if (!resend) ++groups_sent_;
   }
 
   port::CanTransport& bus_;
@@ -444,13 +530,18 @@ class Bridge {
   can::TxChannel<can::PlantForces> tx_forces_;
   can::TxChannel<can::PlantStatus> tx_status_;
   can::TxChannel<can::PlantDiag> tx_diag_;
+  can::TxChannel<can::PlantBusDiag> tx_bus_diag_;
+  can::TxChannel<can::PlantCmdDiag> tx_cmd_diag_;
 
   can::PlantMode mode_ = can::PlantMode::Init;
+  CmdTimeoutReaction cmd_reaction_ = CmdTimeoutReaction::Dbc;
   CmdState cmd_state_ = CmdState::NoneYet;
   can::CtrlCmd cmd_{};
   can::HarnessLoad load_{};
   bool cmd_monitor_ = false, load_monitor_ = false, load_timed_out_ = false;
   bool drain_cmd_ = false, drain_load_ = false;
+  bool cmd_unused_ = false;  // a used CtrlCmd no plant frame has applied yet
+  std::uint64_t dropped_at_status_ = 0;
   std::int64_t cmd_last_ns_ = 0, load_last_ns_ = 0;
   long fast_cycle_frames_ = 10, slow_cycle_frames_ = 100;
 
@@ -461,7 +552,9 @@ class Bridge {
   RxCounts rx_{};
   TxCounts tx_{};
   std::uint64_t cmd_timeouts_ = 0, load_timeouts_ = 0, rt_overruns_ = 0;
-  std::uint64_t steps_requested_ = 0, groups_sent_ = 0;
+  std::uint64_t steps_requested_ = 0, groups_sent_ = 0, groups_resent_ = 0;
+  bool have_last_seq_ = false, last_group_diag_ = false;
+  std::uint8_t last_seq_ = 0, last_group_tag_ = 0;
 };
 
 // The real-time pacing loop (docs/sil.md#real-time): absolute deadlines;

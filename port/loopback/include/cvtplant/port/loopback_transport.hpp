@@ -2,8 +2,8 @@
 // fixed receive ring; a frame sent by one node is delivered to every other
 // node, as on a real bus. Heap-free, single-threaded, never blocks: an
 // empty receive with a timeout advances the attached VirtualClock instead.
-// Test hooks inject error frames and transmit-buffer exhaustion so the
-// error paths of code above the transport can be exercised.
+// Test hooks inject error frames, transmit-buffer exhaustion and lost frames
+// so the error paths of code above the transport can be exercised.
 #pragma once
 
 #include <cstddef>
@@ -106,6 +106,17 @@ class LoopbackBus {
 
   Node& node(size_t i) noexcept { return nodes_[i]; }
 
+  // Test hook: a frame lost on the wire. `drop(ctx, from_node, frame)`
+  // returning true makes the frame reach no node; the sender still sees Ok
+  // (CAN has no end-to-end acknowledgement). Plain function pointer and
+  // context: heap-free. nullptr removes the hook.
+  using DropFilter = bool (*)(void* ctx, size_t from_node, const can::CanFrame& f);
+  void set_drop_filter(DropFilter drop, void* ctx = nullptr) noexcept {
+    drop_ = drop;
+    drop_ctx_ = ctx;
+  }
+  uint64_t frames_dropped() const noexcept { return frames_dropped_; }
+
   // Test hook: deliver an error frame (class bits in `error_class`,
   // controller detail in data[1]) to one node.
   void inject_error(size_t node_index, uint32_t error_class, uint8_t ctrl_detail = 0) noexcept {
@@ -119,11 +130,18 @@ class LoopbackBus {
 
  private:
   void broadcast(size_t from, const can::CanFrame& f) noexcept {
+    if (drop_ != nullptr && drop_(drop_ctx_, from, f)) {
+      ++frames_dropped_;
+      return;
+    }
     for (size_t i = 0; i < kNodes; ++i)
       if (i != from) nodes_[i].enqueue(f);
   }
 
   Clock* clock_;
+  DropFilter drop_ = nullptr;
+  void* drop_ctx_ = nullptr;
+  uint64_t frames_dropped_ = 0;
   Node nodes_[kNodes];
 };
 
