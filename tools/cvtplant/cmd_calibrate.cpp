@@ -61,18 +61,6 @@ struct Case {
   double scale[4];   // RMS of the reference's omega1, omega2, F_ax1, torque
 };
 
-Series every_nth(const Series& s, int n) {
-  Series o;
-  for (std::size_t i = 0; i < s.size(); i += static_cast<std::size_t>(n)) {
-    o.t_s.push_back(s.t_s[i]);
-    o.omega1_rad_s.push_back(s.omega1_rad_s[i]);
-    o.omega2_rad_s.push_back(s.omega2_rad_s[i]);
-    o.F_ax1_N.push_back(s.F_ax1_N[i]);
-    o.torque_driver_Nm.push_back(s.torque_driver_Nm[i]);
-    o.slip1_m_s.push_back(s.slip1_m_s[i]);
-  }
-  return o;
-}
 
 double rms(const std::vector<double>& v) {
   double s = 0;
@@ -113,12 +101,13 @@ struct Problem {
       bool ok = cvt::validate_scene(s).ok;
       if (ok) {
         try {
-          p = every_nth(plant_run(s, s.frame_s), every);
+          p = plant_run(s, s.frame_s).select(c.reference.size() * std::size_t(every), std::size_t(every));
         } catch (const RunError&) {
           ok = false;
         }
       }
-      if (!ok || p.size() != c.reference.size()) {
+      // A reference that stopped early (RunFailure) is fitted up to there.
+      if (!ok || p.size() < c.reference.size()) {
         // A parameter set the plant cannot run (its watchdog trips): a large,
         // smooth penalty keeps the optimiser away.
         ++faults;
@@ -209,15 +198,18 @@ Action register_calibrate(CLI::App& app) {
     const auto names = split(o.scenes);
     if (names.empty()) throw UsageError{"--scene: no scene"};
     std::vector<std::shared_ptr<LoadedScene>> loaded;
+    std::vector<cvt::Scene> plant_scenes;
     for (const auto& n : names) {
       auto l = resolve_scene(n);
-      if (!o.start.empty()) apply_params_file(o.start, l->scene);
       std::string why;
       if (!reference_params(l->scene, why)) throw UsageError{"--scene " + n + ": the reference cannot run " + why};
       loaded.push_back(l);
+      // --start moves the plant's parameters only; the reference runs the scene.
+      plant_scenes.push_back(l->scene);
+      if (!o.start.empty()) apply_params_file(o.start, plant_scenes.back());
     }
     // The fitted values are shared by every scene: they start from the first's.
-    pb.base = loaded.front()->scene.params;
+    pb.base = plant_scenes.front().params;
     try {
       cvt::analysis::ensure_dir(o.out_dir);
       cvt::analysis::ensure_dir(o.out_dir + "/reference-cache");
@@ -225,13 +217,15 @@ Action register_calibrate(CLI::App& app) {
       throw UsageError{std::string("--out-dir: ") + e.what()};
     }
     double ref_cpu = 0;
-    for (const auto& l : loaded) {
+    for (std::size_t li = 0; li < loaded.size(); ++li) {
       Case c;
-      c.name = l->name;
-      c.scene = l->scene;
+      c.name = loaded[li]->name;
+      c.scene = plant_scenes[li];
       if (o.t_end_s > 0) c.scene.t_end_s = std::min(o.t_end_s, c.scene.t_end_s);
+      cvt::Scene ref_scene = loaded[li]->scene;
+      ref_scene.t_end_s = c.scene.t_end_s;
       std::string why;
-      const auto mp = reference_params(c.scene, why);
+      const auto mp = reference_params(ref_scene, why);
       cvt::mbd::RunOptions ro;
       ro.t_end_s = c.scene.t_end_s;
       ro.rtol = o.rtol;
@@ -240,7 +234,7 @@ Action register_calibrate(CLI::App& app) {
       const ReferenceRun rr =
           reference_run(*mp, ro, o.out_dir + "/reference-cache", "calibrate " + c.name + ": reference");
       ref_cpu += rr.cpu_s;
-      c.reference = every_nth(rr.series, o.every);
+      c.reference = rr.series.select(rr.series.size(), std::size_t(o.every));
       const std::vector<double>* rv[4] = {&c.reference.omega1_rad_s, &c.reference.omega2_rad_s,
                                           &c.reference.F_ax1_N, &c.reference.torque_driver_Nm};
       for (int q = 0; q < 4; ++q) c.scale[q] = std::max(rms(*rv[q]), 1e-9);

@@ -36,6 +36,7 @@ struct SceneResult {
   double t_end_s = 0;
   Comparison cmp;
   ReferenceRun ref;
+  double stop_s[2] = {-1, -1};  // first time each reference sheave is at its end stop (-1: never)
   std::string png, csv;
 };
 
@@ -57,7 +58,7 @@ void write_overlay_csv(const std::string& path, const Series& p, const Series& r
                "t_s,omega1_plant,omega1_ref,omega2_plant,omega2_ref,ratio_plant,ratio_ref,F_ax1_plant_N,F_ax1_ref_N,"
                "torque_plant_Nm,torque_ref_Nm,slip1_plant_m_s,slip1_ref_m_s\n");
   auto ratio = [](double w1, double w2) { return std::fabs(w2) >= 1.0 ? w1 / w2 : NAN; };
-  for (std::size_t i = 0; i < p.size(); ++i)
+  for (std::size_t i = 0; i < std::min(p.size(), r.size()); ++i)
     std::fprintf(f, "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", p.t_s[i], p.omega1_rad_s[i],
                  r.omega1_rad_s[i], p.omega2_rad_s[i], r.omega2_rad_s[i], ratio(p.omega1_rad_s[i], p.omega2_rad_s[i]),
                  ratio(r.omega1_rad_s[i], r.omega2_rad_s[i]), p.F_ax1_N[i], r.F_ax1_N[i], p.torque_driver_Nm[i],
@@ -67,23 +68,29 @@ void write_overlay_csv(const std::string& path, const Series& p, const Series& r
 
 // Stacked panels, one per unit: speeds, ratio, force, torque, slip speed.
 void write_overlay_png(const std::string& dir, const std::string& name, const std::string& csv,
-                       const std::string& png) {
+                       const std::string& png, double compared_s, double t_end_s) {
   auto s = cvt::analysis::open_text_file(dir + "/" + name + ".gp");
   s << cvt::analysis::png_terminal(1000, 1300) << "set output '" << png << "'\n"
     << "set datafile separator ','\nset datafile missing 'nan'\nset grid\nset key outside right\n"
     << "set multiplot layout 5,1 title 'Scene " << name
     << ": real-time plant (lines) against the multibody reference (thin, grey and red)'\n"
     << "set lmargin 12\nset rmargin 26\nunset xlabel\n";
+  // A dotted line where the comparison ends (a sheave at its end stop, or
+  // the reference stopped).
+  if (compared_s < t_end_s - 1e-9)
+    s << "set arrow from " << compared_s << ", graph 0 to " << compared_s << ", graph 1 nohead dt 3 lc rgb '#000000'\n";
   const std::string src = "'" + csv + "' skip 1";
   s << "set ylabel 'pulley speed [rad/s]'\n"
     << "plot " << src << " using 1:3 with lines lw 1 lc rgb '#888888' title 'omega1 reference', " << src
     << " using 1:5 with lines lw 1 lc rgb '#e07b7b' title 'omega2 reference', " << src
     << " using 1:2 with lines lw 2 lc rgb '#1f4e9c' title 'omega1 plant', " << src
     << " using 1:4 with lines lw 2 dt 2 lc rgb '#c0392b' title 'omega2 plant'\n";
-  s << "set ylabel 'speed ratio omega1/omega2 [-]'\n"
+  // The ratio passes through infinity while a driven pulley starts: a fixed
+  // range keeps the running values readable.
+  s << "set ylabel 'speed ratio omega1/omega2 [-]'\nset yrange [0:6]\n"
     << "plot " << src << " using 1:7 with lines lw 1 lc rgb '#888888' title 'reference', " << src
     << " using 1:6 with lines lw 2 lc rgb '#1f4e9c' title 'plant'\n";
-  s << "set ylabel 'driver axial force F_ax1 [kN]'\n"
+  s << "set autoscale y\nset ylabel 'driver axial force F_ax1 [kN]'\n"
     << "plot " << src << " using 1:($9/1000) with lines lw 1 lc rgb '#888888' title 'reference', " << src
     << " using 1:($8/1000) with lines lw 2 lc rgb '#1f4e9c' title 'plant'\n";
   s << "set ylabel 'torque on the driver [N m]'\n"
@@ -110,12 +117,15 @@ nlohmann::json to_json(const SceneResult& r) {
   }
   j["status"] = "ok";
   j["t_end_s"] = r.t_end_s;
+  j["compared_s"] = r.cmp.compared_s;
+  j["sheave_at_stop_s"] = {{"driver", jtime(r.stop_s[0])}, {"driven", jtime(r.stop_s[1])}};
   j["window_s"] = r.cmp.window_s;
   j["reference"] = {{"from_cache", r.ref.from_cache},
                     {"cpu_s", r.ref.cpu_s},
                     {"wall_s", r.ref.wall_s},
                     {"steps", r.ref.steps},
-                    {"energy_residual_rel", r.ref.ledger_residual_rel}};
+                    {"energy_residual_rel", r.ref.ledger_residual_rel},
+                    {"failure", r.ref.failure.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.ref.failure)}};
   nlohmann::json rows = nlohmann::json::array();
   for (const auto& e : r.cmp.rows)
     rows.push_back({{"quantity", e.quantity},
@@ -154,8 +164,12 @@ void print_text(const std::vector<SceneResult>& results) {
       std::printf("## %s: not run (the reference cannot run %s)\n\n", r.name.c_str(), r.skipped.c_str());
       continue;
     }
-    std::printf("## %s (%g s; steady state: the last %g s; reference %s)\n\n", r.name.c_str(), r.t_end_s,
-                r.cmp.window_s, r.ref.from_cache ? "from the cache" : "run now");
+    std::printf("## %s (%g s; compared over 0-%g s; steady state: the last %g s of it; reference %s)\n\n",
+                r.name.c_str(), r.t_end_s, r.cmp.compared_s, r.cmp.window_s,
+                r.ref.from_cache ? "from the cache" : "run now");
+    if (!r.ref.failure.empty()) std::printf("The comparison ends there: %s.\n\n", r.ref.failure.c_str());
+    std::printf("Reference's movable sheaves at their end stops (a ratio limit) from: driver %s, driven %s.\n\n",
+                tfmt(r.stop_s[0]).c_str(), tfmt(r.stop_s[1]).c_str());
     std::printf("| quantity | unit | relative RMS error | plant (steady) | reference (steady) | steady-state error |\n");
     std::printf("|---|---|---|---|---|---|\n");
     for (const auto& e : r.cmp.rows)
@@ -227,12 +241,14 @@ Action register_validate(CLI::App& app) {
       ro.max_steps = o.max_steps;
       r.ref = reference_run(*params, ro, o.out_dir + "/reference-cache", "validate " + r.name + ": reference");
       const Series plant = plant_run(s, s.frame_s);
-      r.cmp = compare(plant, r.ref.series);
+      // A reference that stopped early is compared up to there.
+      r.cmp = compare(plant, r.ref.series, std::min(plant.size(), r.ref.series.size()));
+      for (int j = 0; j < 2; ++j) r.stop_s[j] = first_at_stop_s(r.ref, j, params->sheave_stop_m);
       r.csv = o.out_dir + "/" + r.name + ".csv";
       write_overlay_csv(r.csv, plant, r.ref.series);
       if (o.figures) {
         r.png = o.out_dir + "/" + r.name + ".png";
-        write_overlay_png(o.out_dir, r.name, r.csv, r.png);
+        write_overlay_png(o.out_dir, r.name, r.csv, r.png, r.cmp.compared_s, r.t_end_s);
       }
       results.push_back(r);
     }

@@ -23,6 +23,18 @@ void Series::reserve(std::size_t n) {
   for (auto* v : {&t_s, &omega1_rad_s, &omega2_rad_s, &F_ax1_N, &torque_driver_Nm, &slip1_m_s}) v->reserve(n);
 }
 
+Series Series::select(std::size_t n, std::size_t step) const {
+  Series o;
+  std::vector<double> Series::*const cols[] = {&Series::t_s,     &Series::omega1_rad_s,     &Series::omega2_rad_s,
+                                               &Series::F_ax1_N, &Series::torque_driver_Nm, &Series::slip1_m_s};
+  for (const auto c : cols) {
+    const std::vector<double>& from = this->*c;
+    std::vector<double>& to = o.*c;
+    for (std::size_t i = 0; i < std::min(n, from.size()); i += std::max<std::size_t>(1, step)) to.push_back(from[i]);
+  }
+  return o;
+}
+
 namespace {
 
 bool is_constant(const cvt::Profile& p) {
@@ -75,10 +87,11 @@ std::optional<cvt::mbd::MbdParams> reference_params(const cvt::Scene& s, std::st
     why_not = "a torque profile (the reference's torques are constant)";
     return std::nullopt;
   }
+  // The chain and its pulley radii stay the seed's (Table 1): the plant's
+  // r1, r2 and lump parameters are effective values fitted to this chain
+  // (`cvtplant calibrate`), not inputs of the reference.
   cvt::mbd::MbdParams p = cvt::mbd::seed_case(1);
   p.friction = rp.friction;
-  p.r1_m = rp.r1_m;
-  p.r2_m = rp.r2_m;
   p.J1_kgm2 = rp.J1_kgm2;
   p.J2_kgm2 = rp.J2_kgm2;
   p.beta0_rad = rp.beta0_rad;
@@ -98,7 +111,8 @@ std::optional<cvt::mbd::MbdParams> reference_params(const cvt::Scene& s, std::st
 std::string reference_key(const cvt::mbd::MbdParams& p, const cvt::mbd::RunOptions& r) {
   std::ostringstream k;
   k.precision(17);
-  k << "cvtplant multibody reference v" << cvt::mbd::kReferenceVersion << "\n";
+  // The cache's format (its CSV columns) is part of the key too.
+  k << "cvtplant multibody reference v" << cvt::mbd::kReferenceVersion << ", cache format 2\n";
   k << "beta0 " << p.beta0_rad << " C " << p.center_distance_m << " m " << p.link_mass_kg << " J " << p.J1_kgm2 << ' '
     << p.J2_kgm2 << " L " << p.link_length_m << " Kb " << p.bolt_stiffness_N_m << " lb " << p.bolt_length_m << " k "
     << p.joint_stiffness_N_m << " p " << p.joint_damping_Ns_m << " r " << p.r1_m << ' ' << p.r2_m << "\n";
@@ -142,32 +156,39 @@ std::string read_all(const std::string& path) {
   return s.str();
 }
 
-// The cache's CSV: t, omega1, omega2, F_ax1, driver torque, driver slip.
-bool read_series(const std::string& path, Series& out) {
+// The cache's CSV: t, omega1, omega2, F_ax1, driver torque, driver slip,
+// sheave openings.
+bool read_series(const std::string& path, ReferenceRun& out) {
   std::FILE* f = std::fopen(path.c_str(), "r");
   if (f == nullptr) return false;
   char line[512];
   bool ok = std::fgets(line, sizeof line, f) != nullptr;  // header
-  double v[6];
-  while (ok && std::fscanf(f, "%lf,%lf,%lf,%lf,%lf,%lf", &v[0], &v[1], &v[2], &v[3], &v[4], &v[5]) == 6) {
-    out.t_s.push_back(v[0]);
-    out.omega1_rad_s.push_back(v[1]);
-    out.omega2_rad_s.push_back(v[2]);
-    out.F_ax1_N.push_back(v[3]);
-    out.torque_driver_Nm.push_back(v[4]);
-    out.slip1_m_s.push_back(v[5]);
+  double v[8];
+  Series& s = out.series;
+  while (ok && std::fscanf(f, "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &v[6],
+                           &v[7]) == 8) {
+    s.t_s.push_back(v[0]);
+    s.omega1_rad_s.push_back(v[1]);
+    s.omega2_rad_s.push_back(v[2]);
+    s.F_ax1_N.push_back(v[3]);
+    s.torque_driver_Nm.push_back(v[4]);
+    s.slip1_m_s.push_back(v[5]);
+    out.sheave1_m.push_back(v[6]);
+    out.sheave2_m.push_back(v[7]);
   }
   std::fclose(f);
-  return ok && out.size() > 0;
+  return ok && s.size() > 0;
 }
 
-void write_series(const std::string& path, const Series& s) {
+void write_series(const std::string& path, const ReferenceRun& r) {
   std::FILE* f = std::fopen(path.c_str(), "w");
   if (f == nullptr) throw UsageError{"cannot write " + path};
-  std::fprintf(f, "t_s,omega1_rad_s,omega2_rad_s,F_ax1_N,torque_driver_Nm,slip1_m_s\n");
+  const Series& s = r.series;
+  std::fprintf(f, "t_s,omega1_rad_s,omega2_rad_s,F_ax1_N,torque_driver_Nm,slip1_m_s,sheave1_m,sheave2_m\n");
   for (std::size_t i = 0; i < s.size(); ++i)
-    std::fprintf(f, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", s.t_s[i], s.omega1_rad_s[i], s.omega2_rad_s[i],
-                 s.F_ax1_N[i], s.torque_driver_Nm[i], s.slip1_m_s[i]);
+    std::fprintf(f, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", s.t_s[i], s.omega1_rad_s[i],
+                 s.omega2_rad_s[i], s.F_ax1_N[i], s.torque_driver_Nm[i], s.slip1_m_s[i], r.sheave1_m[i],
+                 r.sheave2_m[i]);
   if (std::fclose(f) != 0) throw UsageError{"cannot write " + path};
 }
 
@@ -179,12 +200,16 @@ ReferenceRun reference_run(const cvt::mbd::MbdParams& p, const cvt::mbd::RunOpti
   const std::string base = cache_dir + "/" + key_hash(key);
   ReferenceRun out;
   // The key file is written last: a run cut short leaves no key, so no hit.
-  if (read_all(base + ".key") == key && read_series(base + ".csv", out.series)) {
+  if (read_all(base + ".key") == key && read_series(base + ".csv", out)) {
     out.from_cache = true;
+    out.failure = read_all(base + ".failure");
     return out;
   }
-  out.series = Series{};
-  out.series.reserve(static_cast<std::size_t>(r.t_end_s / r.sample_s) + 2);
+  out = ReferenceRun{};
+  const std::size_t n = static_cast<std::size_t>(r.t_end_s / r.sample_s) + 2;
+  out.series.reserve(n);
+  out.sheave1_m.reserve(n);
+  out.sheave2_m.reserve(n);
   auto on_sample = [&](const cvt::mbd::Sample& s, const cvt::mbd::ChainModel&, const double*) {
     out.series.t_s.push_back(s.t_s);
     out.series.omega1_rad_s.push_back(s.omega_rad_s[0]);
@@ -194,27 +219,46 @@ ReferenceRun reference_run(const cvt::mbd::MbdParams& p, const cvt::mbd::RunOpti
     // chain takes off the driver is its negative (docs/mbd.md#equations-of-motion).
     out.series.torque_driver_Nm.push_back(-s.chain_torque_Nm[0]);
     out.series.slip1_m_s.push_back(s.slip_m_s[0]);
+    out.sheave1_m.push_back(s.sheave_opening_m[0]);
+    out.sheave2_m.push_back(s.sheave_opening_m[1]);
   };
   Progress progress(label, r.t_end_s);
   cvt::mbd::RunStats st;
   try {
     st = cvt::mbd::simulate(p, r, on_sample, [&](double t) { progress.update(t); });
   } catch (const cvt::mbd::RunFailure& e) {
-    progress.finish();
+    // The samples before the failure are still a valid reference: kept, and
+    // the comparison ends there (comparable_samples).
     char buf[96];
-    std::snprintf(buf, sizeof buf, "reference run failed at t = %.6g s after %lld steps: ", e.t_s, e.stats.steps);
-    throw RunError{buf + e.quantity};
+    std::snprintf(buf, sizeof buf, "the reference stopped at t = %.6g s after %lld steps: ", e.t_s, e.stats.steps);
+    out.failure = buf + e.quantity;
+    st = e.stats;
   }
   progress.finish();
+  if (out.series.size() < 2) throw RunError{out.failure.empty() ? "the reference made no samples" : out.failure};
   out.cpu_s = st.cpu_s;
   out.wall_s = st.wall_s;
   out.steps = st.steps;
   out.ledger_residual_rel = st.ledger_residual_max_rel;
-  write_series(base + ".csv", out.series);
+  write_series(base + ".csv", out);
+  if (!out.failure.empty()) {
+    std::ofstream f(base + ".failure", std::ios::binary);
+    f << out.failure;
+    if (!f) throw UsageError{"cannot write " + base + ".failure"};
+  } else {
+    std::remove((base + ".failure").c_str());
+  }
   std::ofstream k(base + ".key", std::ios::binary);
   k << key;
   if (!k) throw UsageError{"cannot write " + base + ".key"};
   return out;
+}
+
+double first_at_stop_s(const ReferenceRun& r, int sheave, double sheave_stop_m) {
+  const std::vector<double>& v = sheave == 0 ? r.sheave1_m : r.sheave2_m;
+  for (std::size_t i = 0; i < v.size() && i < r.series.size(); ++i)
+    if (std::fabs(v[i]) >= sheave_stop_m - 1e-4) return r.series.t_s[i];
+  return -1.0;
 }
 
 Series plant_run(const cvt::Scene& s, double sample_s) {
@@ -307,13 +351,16 @@ void ratios(const Series& p, const Series& r, std::vector<double>& rp, std::vect
 
 }  // namespace
 
-Comparison compare(const Series& plant, const Series& ref) {
-  if (plant.size() != ref.size() || plant.size() < 2)
-    throw RunError{"plant and reference have different sample grids"};
+
+Comparison compare(const Series& plant_all, const Series& ref_all, std::size_t n) {
+  if (plant_all.size() < n || ref_all.size() < n || n < 2)
+    throw RunError{"plant and reference have too few common samples to compare"};
+  const Series plant = plant_all.select(n), ref = ref_all.select(n);
   for (std::size_t i = 0; i < plant.size(); ++i)
     if (std::fabs(plant.t_s[i] - ref.t_s[i]) > 1e-9) throw RunError{"plant and reference have different sample times"};
   Comparison c;
   const double t_end = ref.t_s.back();
+  c.compared_s = t_end;
   c.window_s = std::min(1.0, 0.5 * t_end);
   std::size_t from = 0;
   while (from < ref.size() && ref.t_s[from] < t_end - c.window_s - 1e-9) ++from;

@@ -20,6 +20,8 @@ struct Series {
   std::vector<double> t_s, omega1_rad_s, omega2_rad_s, F_ax1_N, torque_driver_Nm, slip1_m_s;
   std::size_t size() const { return t_s.size(); }
   void reserve(std::size_t n);
+  // Every `step`-th of the first n samples.
+  Series select(std::size_t n, std::size_t step = 1) const;
 };
 
 // The reference's inputs for a plant scene, or why it cannot run that scene
@@ -39,10 +41,20 @@ std::string key_hash(const std::string& key);
 
 struct ReferenceRun {
   Series series;
+  // Movable sheave openings [m] per sample (docs/mbd.md#clamped-sheaves).
+  std::vector<double> sheave1_m, sheave2_m;
   bool from_cache = false;
   double cpu_s = 0, wall_s = 0, ledger_residual_rel = 0;
   long long steps = 0;
+  // A run that stopped early (a link left the drive, the ledger, the step
+  // cap): the reason, and `series` holds the samples up to then.
+  std::string failure;
 };
+
+// The first sample time at which the reference's movable sheave (0 driver,
+// 1 driven) is within 0.1 mm of its end stop (the chain at a ratio limit: the
+// stop, not only the clamping force, then holds the sheave), or -1: never.
+double first_at_stop_s(const ReferenceRun& r, int sheave, double sheave_stop_m);
 
 // The reference run for (p, r): read from `cache_dir` if a run with the same
 // key is there, else run (progress bar labelled `label`) and stored. A run
@@ -65,6 +77,7 @@ struct ErrorRow {
 
 struct Comparison {
   std::vector<ErrorRow> rows;
+  double compared_s = 0;  // the samples compared: t in [0, compared_s]
   double window_s = 0;  // steady-state window: the last second (or the last half of a shorter run)
   double ripple_plant_N = 0, ripple_reference_N = 0;  // F_ax1 peak to peak over the window
   // Time of the first sample whose driver slip exceeds kGrossSlip_m_s
@@ -75,8 +88,9 @@ struct Comparison {
 // Driver slip speed above which the wrap is in gross slip [m/s].
 inline constexpr double kGrossSlip_m_s = 1.0;
 
-// plant and reference must share the grid (same t_s).
-Comparison compare(const Series& plant, const Series& reference);
+// plant and reference must share the grid (same t_s) over the first n
+// samples of each; the comparison uses those n samples.
+Comparison compare(const Series& plant, const Series& reference, std::size_t n);
 
 // Relative RMS of plant - reference over one column (samples where either is
 // NaN left out): RMS of the difference over RMS of the reference.
