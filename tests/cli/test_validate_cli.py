@@ -4,6 +4,7 @@ shortened span (docs/validation.md): the table, the overlays, the reference
 cache, the parameter file, and bad input."""
 import json
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -81,6 +82,43 @@ class Validate(unittest.TestCase):
         self.assertIn("time to gross slip", r.stdout)
 
 
+TOML = r"^(\w+) = ([-+0-9.eE]+)"
+HPP = r"^  p\.(\w+) = ([-+0-9.eE]+);"
+
+
+def values(text, pattern):
+    return {m.group(1): float(m.group(2)) for m in re.finditer(pattern, text, re.M)}
+
+
+class CalibratedSet(unittest.TestCase):
+    def test_the_checked_in_header_holds_the_parameter_files_values(self):
+        # The built-in scenes read the header; docs and users read the file.
+        root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+        with open(os.path.join(root, "tools", "params", "calibrated.toml")) as f:
+            toml_values = values(f.read(), TOML)
+        with open(os.path.join(root, "lib", "include", "cvtplant", "scene", "calibrated_params.hpp")) as f:
+            hpp_values = values(f.read(), HPP)
+        self.assertTrue(toml_values)
+        self.assertEqual(hpp_values, toml_values)
+
+    def test_params_moves_the_plant_only(self):
+        with tempfile.TemporaryDirectory() as d:
+            uncal = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools", "params",
+                                 "uncalibrated.toml")
+            a = run("validate", "--scene", "gross-slip", *SHORT, "--out-dir", d, "--json", "--no-figures")
+            b = run("validate", "--scene", "gross-slip", *SHORT, "--out-dir", d, "--json", "--no-figures",
+                    "--params", uncal)
+            self.assertEqual(a.returncode, 0, a.stderr)
+            self.assertEqual(b.returncode, 0, b.stderr)
+            sa, sb = json.loads(a.stdout)["scenes"][0], json.loads(b.stdout)["scenes"][0]
+            self.assertTrue(sb["reference"]["from_cache"])  # the same reference run
+            ta = next(e for e in sa["errors"] if e["quantity"] == "torque on the driver")
+            tb = next(e for e in sb["errors"] if e["quantity"] == "torque on the driver")
+            self.assertEqual(ta["reference_ss"], tb["reference_ss"])
+            # The lower calibrated normal load gives a lower sliding torque.
+            self.assertLess(ta["plant_ss"], tb["plant_ss"])
+
+
 class BadInput(unittest.TestCase):
     def check(self, args, needle):
         r = run(*args)
@@ -107,14 +145,19 @@ class BadInput(unittest.TestCase):
             with open(bad, "w") as f:
                 f.write("[params]\nk1_typo = 5.0\n")
             self.check(["calibrate", "--scene", "seed-case1", "--start", bad, "--out-dir", d], "k1_typo")
+            self.check(["validate", "--scene", "seed-case1", "--params", bad, "--out-dir", d], "k1_typo")
+            with open(bad, "w") as f:
+                f.write("[params]\nentry_load_share = 1.0\n")
+            self.check(["validate", "--scene", "seed-case1", "--params", bad, "--out-dir", d], "entry_load_share")
 
 
 class Calibrate(unittest.TestCase):
     def test_fit_lowers_the_residual_and_writes_a_loadable_file(self):
         with tempfile.TemporaryDirectory() as d:
             out = os.path.join(d, "p.toml")
+            hpp = os.path.join(d, "p.hpp")
             r = run("calibrate", "--scene", "seed-case1", "--t-end", "0.3", "--fit", "r1_m,r2_m", "--every", "5",
-                    "--max-evals", "40", "--out-dir", d, "--out", out, "--json")
+                    "--max-evals", "40", "--out-dir", d, "--out", out, "--header", hpp, "--json")
             self.assertEqual(r.returncode, 0, r.stderr)
             j = json.loads(r.stdout)
             self.assertLess(j["cost_end"], j["cost_start"])
@@ -125,6 +168,8 @@ class Calibrate(unittest.TestCase):
                 text = f.read()
             self.assertIn("[params]", text)
             self.assertIn("cvtplant calibrate --scene seed-case1", text)
+            with open(hpp) as f:
+                self.assertEqual(values(f.read(), HPP), values(text, TOML))
             # The file starts a second fit where the first ended: nothing left to gain.
             r2 = run("calibrate", "--scene", "seed-case1", "--t-end", "0.3", "--fit", "r1_m,r2_m", "--every", "5",
                      "--max-evals", "40", "--out-dir", d, "--start", out, "--json")

@@ -117,7 +117,9 @@ TEST_CASE("slope floor: W sees the stick stiffness only inside the regularisatio
   rom.jacobian(x, rom.contact(x), W, true);
   CHECK(rom.contact(x).lump1.slope == 0.0);
   const double floor = cvt::friction_characteristic_slope(s.params.friction, 1.0 / s.params.friction.lambda_s_m);
-  const double N = 3300.0 / std::cos(s.params.beta0_rad);
+  // The entry lump's normal load (docs/rom.md#lump-load-split).
+  const double N = 3300.0 * cvt::lump_load_per_axial(s.params.entry_load_share, s.params.normal_load_factor,
+                                                     std::cos(s.params.beta0_rad));
   CHECK(W(3, 3) - J(3, 3) == doctest::Approx(-floor * N / s.params.lump_mass_kg).epsilon(1e-9));
   // Outside the layer (slipping at 0.76 m/s) the floor changes nothing.
   x(0) = 10.0;
@@ -142,6 +144,11 @@ template <class T, std::uint32_t F>
 std::pair<cvt::RomFault, double> case2_from_rest(bool floor, int substeps, double t_end) {
   cvt::Scene s = *cvt::find_builtin_scene("seed-case2");
   s.t_end_s = t_end;
+  // The seed's even wrap at the full lumped normal load: there the first
+  // steps without the floor blow up (the calibrated wrap of the built-in
+  // scene happens to pass; docs/rom.md#slope-floor).
+  s.params.entry_load_share = 0.5;
+  s.params.normal_load_factor = 1.0;
   cvt::RomSimConfig cfg = cvt::sim_config_of(s);
   cfg.substeps = substeps;
   cfg.w_slope_floor = floor;

@@ -247,6 +247,12 @@ Speeds run_speeds(const cvt::Scene& s) {
   return r;
 }
 
+double rms(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x * x;
+  return v.empty() ? 0.0 : std::sqrt(s / static_cast<double>(v.size()));
+}
+
 double rel_rms(const std::vector<double>& a, const std::vector<double>& ref) {
   if (a.size() != ref.size()) return HUGE_VAL;
   double se = 0, sr = 0;
@@ -263,7 +269,14 @@ void check_fixed_against_double(const cvt::Scene& scene) {
   const Speeds q = run_speeds<cvt::q16_16>(s);
   const Speeds d = run_speeds<double>(s);
   CHECK(q.fault == cvt::RomFault::none);
-  const double e1 = rel_rms(q.w1, d.w1), e2 = rel_rms(q.w2, d.w2), ef = rel_rms(q.fax, d.fax);
+  const double e1 = rel_rms(q.w1, d.w1), ef = rel_rms(q.fax, d.fax);
+  // omega2 against the larger of its own RMS and the driver's speed seen at
+  // the driven pulley (omega1 r1/r2): in gross-slip the calibrated wrap
+  // carries about the load torque and the driven pulley nearly stalls; an
+  // error relative to its own small speed would measure that knife edge, not
+  // the arithmetic.
+  const double w2_scale = std::max(rms(d.w2), rms(d.w1) * s.params.r1_m / s.params.r2_m);
+  const double e2 = rel_rms(q.w2, d.w2) * rms(d.w2) / w2_scale;
   MESSAGE(std::string(s.name) << ": q16.16 vs double relative RMS: omega1 " << e1 << ", omega2 " << e2 << ", F_ax " << ef);
   // The fixed-point target is 2e-2 against the converged reference; double
   // at this default is within 2.2e-6 of it (docs/rom.md#fixed-point).

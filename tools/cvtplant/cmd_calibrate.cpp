@@ -28,22 +28,40 @@ namespace cvtcli::validation {
 namespace {
 
 // A fitted parameter: its name in the parameter file and where it lives.
+// The unknown is log(value / start) for a positive value, or the change of
+// logit(value) for a share in (0, 1), so every value stays in its range.
 struct Fittable {
   const char* name;
   double cvt::RomParams::*field;
+  bool share = false;
 };
 
 constexpr Fittable kFittable[] = {
-    {"k1_N_m", &cvt::RomParams::k1_N_m},         {"c1_Ns_m", &cvt::RomParams::c1_Ns_m},
-    {"k2_N_m", &cvt::RomParams::k2_N_m},         {"c2_Ns_m", &cvt::RomParams::c2_Ns_m},
-    {"lump_mass_kg", &cvt::RomParams::lump_mass_kg}, {"r1_m", &cvt::RomParams::r1_m},
+    {"k1_N_m", &cvt::RomParams::k1_N_m},
+    {"c1_Ns_m", &cvt::RomParams::c1_Ns_m},
+    {"k2_N_m", &cvt::RomParams::k2_N_m},
+    {"c2_Ns_m", &cvt::RomParams::c2_Ns_m},
+    {"lump_mass_kg", &cvt::RomParams::lump_mass_kg},
+    {"r1_m", &cvt::RomParams::r1_m},
     {"r2_m", &cvt::RomParams::r2_m},
+    {"normal_load_factor", &cvt::RomParams::normal_load_factor},
+    {"entry_load_share", &cvt::RomParams::entry_load_share, true},
 };
+
+double fitted_value(const Fittable& f, double start, double theta) {
+  if (!f.share) return start * std::exp(theta);
+  const double z = std::log(start / (1.0 - start)) + theta;
+  return 1.0 / (1.0 + std::exp(-z));
+}
+
+// d value / d theta (one standard deviation of theta to one of the value).
+double value_slope(const Fittable& f, double value) { return f.share ? value * (1.0 - value) : value; }
 
 struct Options {
   std::string scenes = "seed-case1,seed-case2,gross-slip";
   std::string fit = "k1_N_m,c1_Ns_m,k2_N_m,c2_Ns_m,lump_mass_kg,r1_m,r2_m";
   std::string out;
+  std::string header;  // the same values as a C++ header for the built-in scenes
   std::string out_dir = "validation";
   std::string start;  // parameter file to start from
   double t_end_s = 0;
@@ -85,9 +103,10 @@ struct Problem {
     return n;
   }
 
-  // theta: log of each fitted value over its start value.
+  // theta: the unknowns of fitted_value.
   void apply(const Eigen::VectorXd& theta, cvt::RomParams& p) const {
-    for (std::size_t i = 0; i < fit.size(); ++i) p.*(fit[i]->field) = base.*(fit[i]->field) * std::exp(theta[long(i)]);
+    for (std::size_t i = 0; i < fit.size(); ++i)
+      p.*(fit[i]->field) = fitted_value(*fit[i], base.*(fit[i]->field), theta[long(i)]);
   }
 
   void residuals(const Eigen::VectorXd& theta, Eigen::VectorXd& f) {
@@ -151,6 +170,7 @@ std::string command_line(const Options& o) {
   if (!o.start.empty()) s << " --start " << o.start;
   if (o.t_end_s > 0) s << " --t-end " << o.t_end_s;
   s << " --rtol " << o.rtol << " --every " << o.every << " --max-evals " << o.max_evals << " --out " << o.out;
+  if (!o.header.empty()) s << " --header " << o.header;
   return s.str();
 }
 
@@ -161,9 +181,12 @@ Action register_calibrate(CLI::App& app) {
   sub->add_option("--scene", opt->scenes, "Scenes to fit on, comma-separated (each one the reference can run)")
       ->capture_default_str();
   sub->add_option("--fit", opt->fit,
-                  "Parameters to fit, comma-separated: k1_N_m, c1_Ns_m, k2_N_m, c2_Ns_m, lump_mass_kg, r1_m, r2_m")
+                  "Parameters to fit, comma-separated: k1_N_m, c1_Ns_m, k2_N_m, c2_Ns_m, lump_mass_kg, r1_m, r2_m, "
+                  "normal_load_factor, entry_load_share")
       ->capture_default_str();
   sub->add_option("--out", opt->out, "Write the fitted parameters as a parameter file (TOML [params])");
+  sub->add_option("--header", opt->header,
+                  "Also write them as a C++ header with cvt::calibrated::apply(RomParams&) (the built-in scenes')");
   sub->add_option("--out-dir", opt->out_dir, "Directory of the reference cache (shared with validate)")
       ->capture_default_str();
   sub->add_option("--start", opt->start, "Start from a parameter file's values (default: the scenes' own)");
@@ -302,13 +325,13 @@ Action register_calibrate(CLI::App& app) {
     for (int i = 0; i < n; ++i) {
       const auto* f = pb.fit[static_cast<std::size_t>(i)];
       const double v = fitted.*(f->field);
-      const double rel = std::sqrt(std::max(0.0, s2 * cov(i, i)));
+      const double sigma = value_slope(*f, v) * std::sqrt(std::max(0.0, s2 * cov(i, i)));
       const bool idf = identifiable[static_cast<std::size_t>(i)];
       params.push_back({{"name", f->name},
                         {"start", pb.base.*(f->field)},
                         {"value", v},
-                        {"sigma", idf ? nlohmann::json(v * rel) : nlohmann::json(nullptr)},
-                        {"sigma_rel", idf ? nlohmann::json(rel) : nlohmann::json(nullptr)},
+                        {"sigma", idf ? nlohmann::json(sigma) : nlohmann::json(nullptr)},
+                        {"sigma_rel", idf ? nlohmann::json(sigma / v) : nlohmann::json(nullptr)},
                         {"identifiable", idf}});
     }
     j["parameters"] = params;
@@ -348,6 +371,22 @@ Action register_calibrate(CLI::App& app) {
           std::fprintf(f, "%s = %.17g  # not identifiable from these runs, start %.10g\n",
                        p["name"].get<std::string>().c_str(), v, p["start"].get<double>());
       }
+      close_output(f);
+    }
+    if (!o.header.empty()) {
+      // The built-in scenes' copy (lib/ is heap-free and reads no files):
+      // the same values to the last digit as the parameter file.
+      std::FILE* f = open_output(o.header);
+      std::fprintf(f, "#pragma once\n// The real-time plant's lumped parameters fitted to the multibody reference\n");
+      std::fprintf(f, "// (docs/validation.md#calibration), written with the parameter file by:\n//   %s\n",
+                   command_line(o).c_str());
+      std::fprintf(f, "// rms residual %.4g -> %.4g over %d residuals.\n", std::sqrt(cost0 / m), std::sqrt(cost1 / m),
+                   m);
+      std::fprintf(f, "#include \"cvtplant/plant/rom_params.hpp\"\n\nnamespace cvt::calibrated {\n\n");
+      std::fprintf(f, "constexpr void apply(RomParams& p) {\n");
+      for (const auto& p : params)
+        std::fprintf(f, "  p.%s = %.17g;\n", p["name"].get<std::string>().c_str(), p["value"].get<double>());
+      std::fprintf(f, "}\n\n}  // namespace cvt::calibrated\n");
       close_output(f);
     }
     if (o.json) {

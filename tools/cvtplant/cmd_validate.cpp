@@ -22,6 +22,7 @@ namespace {
 struct Options {
   std::string scene = "all";
   std::string out_dir = "validation";
+  std::string params;  // a parameter file applied to every scene's plant
   double t_end_s = 0;  // 0: each scene's own
   double rtol = 5e-7;
   long long max_steps = 20000000;
@@ -196,6 +197,8 @@ Action register_validate(CLI::App& app) {
   sub->add_option("--rtol", opt->rtol, "Reference's BDF relative tolerance, [1e-11, 1e-3]")->capture_default_str();
   sub->add_option("--max-steps", opt->max_steps, "Cap on the reference's integrator steps per scene, [1, 1e12]")
       ->capture_default_str();
+  sub->add_option("--params", opt->params,
+                  "Run the plant with a parameter file's [params] (e.g. calibrate --out); the reference is unchanged");
   sub->add_flag("--json", opt->json, "Print the results as JSON");
   sub->add_flag("!--no-figures", opt->figures, "Skip the overlay PNGs");
   return [opt, sub]() -> int {
@@ -207,8 +210,12 @@ Action register_validate(CLI::App& app) {
     if (!(o.max_steps >= 1 && o.max_steps <= 1000000000000LL)) throw UsageError{"--max-steps: outside [1, 1e12]"};
     if (o.out_dir.empty()) throw UsageError{"--out-dir: empty"};
     const auto scenes = scenes_for(o.scene);
-    // Every scene's length is checked before any work.
+    // Every scene's length and the parameter file are checked before any work.
     for (const auto& l : scenes) {
+      if (!o.params.empty()) {
+        cvt::Scene c = l->scene;
+        apply_params_file(o.params, c);
+      }
       const double t_end = o.t_end_s > 0 ? std::min(o.t_end_s, l->scene.t_end_s) : l->scene.t_end_s;
       if (t_end > o.max_t_end_s)
         throw UsageError{"scene " + l->name + ": " + fmt(t_end) + " s exceeds --max-t-end " + fmt(o.max_t_end_s) +
@@ -234,6 +241,8 @@ Action register_validate(CLI::App& app) {
       }
       if (o.t_end_s > 0) s.t_end_s = std::min(o.t_end_s, s.t_end_s);
       r.t_end_s = s.t_end_s;
+      // After reference_params: the parameter file moves the plant only.
+      if (!o.params.empty()) apply_params_file(o.params, s);
       cvt::mbd::RunOptions ro;
       ro.t_end_s = s.t_end_s;
       ro.rtol = o.rtol;

@@ -197,7 +197,7 @@ class Reader {
     const std::string pre = "params.";
     check_known(t, pre,
                 {"r1_m", "r2_m", "beta0_deg", "center_distance_m", "J1_kgm2", "J2_kgm2", "lump_mass_kg", "k1_N_m",
-                 "c1_Ns_m", "k2_N_m", "c2_Ns_m", "hold_driver_speed", "hold_driven_speed", "stick_speed_m_s",
+                 "c1_Ns_m", "k2_N_m", "c2_Ns_m", "entry_load_share", "normal_load_factor", "hold_driver_speed", "hold_driven_speed", "stick_speed_m_s",
                  "actuator_tau_s", "clamp_max_N", "sheave_mass_kg", "sheave_damping_Ns_m", "K_ax_N_m", "road_T0_Nm",
                  "road_cv_Nms_rad", "road_ca_Nms2_rad2", "road_w_eps_rad_s", "zeta1_rad", "zeta2_rad", "pitch_m",
                  "driven_clamp_N", "radial_mass_kg", "radial_damping_Ns_m", "radial_travel_m", "radial_stop_N_m"});
@@ -212,6 +212,8 @@ class Reader {
     p.c1_Ns_m = number(t, pre, "c1_Ns_m", p.c1_Ns_m);
     p.k2_N_m = number(t, pre, "k2_N_m", p.k2_N_m);
     p.c2_Ns_m = number(t, pre, "c2_Ns_m", p.c2_Ns_m);
+    p.entry_load_share = number(t, pre, "entry_load_share", p.entry_load_share);
+    p.normal_load_factor = number(t, pre, "normal_load_factor", p.normal_load_factor);
     p.hold_driver_speed = boolean(t, pre, "hold_driver_speed", p.hold_driver_speed);
     p.hold_driven_speed = boolean(t, pre, "hold_driven_speed", p.hold_driven_speed);
     p.stick_speed_m_s = number(t, pre, "stick_speed_m_s", p.stick_speed_m_s);

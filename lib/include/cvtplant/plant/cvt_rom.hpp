@@ -212,8 +212,8 @@ class CvtRom {
   template <class S>
   WedgeContact<S> wedge_contact(const S& vt1, const S& vt2, const S& rhod, const S& fax) const {
     WedgeContact<S> c;
-    lump_contact(vt1, rhod * S(c_.inv_cos1), normal_force(fax, S(c_.inv_cos1)), S(c_.tan1), c.F1, c.Fr1);
-    lump_contact(vt2, rhod * S(c_.inv_cos2), normal_force(fax, S(c_.inv_cos2)), S(c_.tan2), c.F2, c.Fr2);
+    lump_contact(vt1, rhod * S(c_.inv_cos1), normal_force(fax, S(c_.load1)), S(c_.tan1), c.F1, c.Fr1);
+    lump_contact(vt2, rhod * S(c_.inv_cos2), normal_force(fax, S(c_.load2)), S(c_.tan2), c.F2, c.Fr2);
     return c;
   }
 
@@ -292,7 +292,7 @@ class CvtRom {
     const T w1 = x(L::kW1), w2 = x(L::kW2);
     const T r1e = c.r1e;
     const T fax = clamp_force(x);
-    const T N1 = normal_force(fax, c_.inv_cos1), N2 = normal_force(fax, c_.inv_cos2);
+    const T N1 = normal_force(fax, c_.load1), N2 = normal_force(fax, c_.load2);
     T s1 = c.lump1.slope, s2 = c.lump2.slope;
     if (w_slope_floor) {
       if (abs(c.v_rel1) < c_.floor_speed && s1 < c_.slope_floor) s1 = c_.slope_floor;
@@ -334,8 +334,8 @@ class CvtRom {
     if constexpr (L::kAxial) {
       if (x(L::kDelta) > T(0)) {
         // dF_i/dF_ax = -phi(v_rel_i) / cos(beta_i)
-        dF1[L::kDelta] = per_tau(-c.lump1.phi * c_.inv_cos1 * c_.K_ax);
-        dF2[L::kDelta] = per_tau(-c.lump2.phi * c_.inv_cos2 * c_.K_ax);
+        dF1[L::kDelta] = per_tau(-c.lump1.phi * c_.load1 * c_.K_ax);
+        dF2[L::kDelta] = per_tau(-c.lump2.phi * c_.load2 * c_.K_ax);
       }
     }
     T sin_psi = T(0);
@@ -395,14 +395,14 @@ class CvtRom {
     const T vc = r2 * x(L::kW2);
     const T fax = clamp_force(x);
     const int v_col[2] = {L::kV1, L::kV2};
-    const T inv_cos[2] = {c_.inv_cos1, c_.inv_cos2};
+    const T load[2] = {c_.load1, c_.load2};
     for (int i = 0; i < 2; ++i) {
       const T vt = slip_velocity<T>(vc, x(v_col[i]), v1);
       if (!(abs(vt) < c_.floor_speed)) continue;
       const T slope = friction_characteristic_slope(c_.friction, vt);
       if (!(slope < c_.slope_floor)) continue;
       // Extra dF_i/dv_t (negative: friction opposes slip), per time unit.
-      const T dg = -per_tau(c_.slope_floor - slope) * normal_force(fax, inv_cos[i]);
+      const T dg = -per_tau(c_.slope_floor - slope) * normal_force(fax, load[i]);
       T dv[kStates];  // d v_t,i / dx
       for (int j = 0; j < kStates; ++j) dv[j] = T(0);
       if (!c_.hold1) dv[L::kW1] = -r1e;
@@ -435,8 +435,8 @@ class CvtRom {
                         Eigen::Matrix<S, kStates, 1>& dxdt) const {
     const S fax = clamp_force(x);
     // Friction grouping as in StickSlipOscillator (docs/rom.md#holds).
-    const S F1 = lump_friction(phi1, normal_force(fax, S(c_.inv_cos1)));
-    const S F2 = lump_friction(phi2, normal_force(fax, S(c_.inv_cos2)));
+    const S F1 = lump_friction(phi1, normal_force(fax, S(c_.load1)));
+    const S F2 = lump_friction(phi2, normal_force(fax, S(c_.load2)));
     drive_train_rows(x, r1e, S(c_.r2), F1, F2, fax, dxdt);
   }
 

@@ -9,6 +9,7 @@
 #include "cvtplant/math/detmath.hpp"
 #include "cvtplant/physics/seed.hpp"
 #include "cvtplant/plant/rom_energy.hpp"
+#include "cvtplant/plant/rom_formulas.hpp"
 #include "cvtplant/plant/rom_layout.hpp"
 #include "cvtplant/plant/rom_params.hpp"
 #include "cvtplant/plant/rom_units.hpp"
@@ -24,6 +25,7 @@ struct RomConstants {
   T r1{}, r2{}, inv_J1{}, inv_J2{}, inv_m{}, k1{}, c1{}, k2{}, c2{};
   FrictionParams<T> friction{};
   T inv_cos1{}, inv_cos2{}, stick_speed{};
+  T load1{}, load2{};  // normal force per axial force of each lump (normal_force)
   T tu{};  // one time unit [s] (RomUnits)
   bool hold1 = false, hold2 = false;
   T inv_tau_h{}, clamp_max{}, inv_ms{}, cs{}, K_ax{};
@@ -62,6 +64,11 @@ struct RomConstants {
     }
     inv_cos1 = T(1.0 / dm::cos(b1));
     inv_cos2 = T(1.0 / dm::cos(b2));
+    // docs/rom.md#lump-load-split: the entry lump (1) carries the share s of
+    // the wrap's normal load, the exit lump (2) the rest; set-up constants,
+    // so the split costs nothing per step.
+    load1 = T(lump_load_per_axial(p.entry_load_share, p.normal_load_factor, dm::cos(b1)));
+    load2 = T(lump_load_per_axial(1.0 - p.entry_load_share, p.normal_load_factor, dm::cos(b2)));
     hold1 = p.hold_driver_speed;
     hold2 = p.hold_driven_speed;
     stick_speed = T(p.stick_speed_m_s);

@@ -125,8 +125,8 @@ inline RomPower<RomAcc<typename Plant::Scalar>> rom_power(const Plant& plant, co
   using L = typename Plant::Layout;
   const auto& c = plant.constants();
   const T fax = plant.clamp_force(xs);
-  const T F1 = lump_friction(contact.lump1.phi, normal_force(fax, c.inv_cos1));
-  const T F2 = lump_friction(contact.lump2.phi, normal_force(fax, c.inv_cos2));
+  const T F1 = lump_friction(contact.lump1.phi, normal_force(fax, c.load1));
+  const T F2 = lump_friction(contact.lump2.phi, normal_force(fax, c.load2));
   const T tau_in = c.hold1 ? friction_torque(contact.r1e, F1, F2) : plant.inputs.tau_in_Nm;
   T tau_load;
   if (c.hold2) {

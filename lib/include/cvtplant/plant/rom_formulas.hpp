@@ -31,11 +31,18 @@ inline S strand_torque(const S& r2, const S& strand1, const S& strand2) {
   return r2 * (strand1 + strand2);
 }
 
-// Normal load of a lump on both flanks, N = F_ax / cos(beta), as F_ax times
-// the set-up constant 1/cos(beta) (docs/rom.md#contact).
+// Normal load of a lump on both flanks, N_i = 2 s_i f F_ax / cos(beta_i)
+// (seed Eq. 5 lumped; s_i the lump's share of the wrap's load, f the
+// normal-load factor), as F_ax times the set-up constant
+// load_i = 2 s_i f / cos(beta_i) (docs/rom.md#contact, #lump-load-split).
 template <class S>
-inline S normal_force(const S& clamp_force, const S& inv_cos_beta) {
-  return clamp_force * inv_cos_beta;
+inline S normal_force(const S& clamp_force, const S& load_per_axial) {
+  return clamp_force * load_per_axial;
+}
+
+// The set-up constant of normal_force for a lump: 2 share factor / cos(beta).
+inline double lump_load_per_axial(double share, double factor, double cos_beta) {
+  return 2.0 * share * factor / cos_beta;
 }
 
 // Friction on a lump, F = -phi(v_rel) N (docs/rom.md#contact).

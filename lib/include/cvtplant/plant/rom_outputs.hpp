@@ -55,8 +55,8 @@ inline RomOutputs<typename Plant::Scalar> rom_outputs(const Plant& plant,
     o.radial_friction1_N = w.Fr1;
     o.radial_friction2_N = w.Fr2;
   } else {
-    o.friction1_N = lump_friction(friction_characteristic(c.friction, o.v_rel1_m_s), normal_force(fax, c.inv_cos1));
-    o.friction2_N = lump_friction(friction_characteristic(c.friction, o.v_rel2_m_s), normal_force(fax, c.inv_cos2));
+    o.friction1_N = lump_friction(friction_characteristic(c.friction, o.v_rel1_m_s), normal_force(fax, c.load1));
+    o.friction2_N = lump_friction(friction_characteristic(c.friction, o.v_rel2_m_s), normal_force(fax, c.load2));
   }
   o.torque_transmitted_Nm = friction_torque(r1e, o.friction1_N, o.friction2_N);
   o.tau_in_Nm = c.hold1 ? o.torque_transmitted_Nm : plant.inputs.tau_in_Nm;

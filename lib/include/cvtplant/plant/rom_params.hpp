@@ -37,6 +37,11 @@ struct RomParams {
   double c1_Ns_m = 81.236189885943800;         // p / (2 n_s)
   double k2_N_m = 23708.624951962083;          // k / (n_w/2)
   double c2_Ns_m = 711.25874855886240;         // p / (n_w/2)
+  // docs/rom.md#lump-load-split: the wrap's normal load 2 f F_ax / cos(beta)
+  // split between the entry lump (1, from the tight strand) and the exit
+  // lump (2, into the slack strand). 0.5 and 1: the seed's even wrap.
+  double entry_load_share = 0.5;    // s in (0, 1): lump 1 carries s, lump 2 1 - s
+  double normal_load_factor = 1.0;  // f: effective normal load over F_ax / cos(beta)
   FrictionParams<double> friction = friction_presets::table2_case1<double>();
   // Kinematic holds (docs/rom.md#holds): the pulley runs at its initial speed
   // whatever the torques; the held torque is reported as the input/load torque.

@@ -4,11 +4,22 @@
 // docs/rom.md; the tests in tests/unit/test_rom_scenes.cpp run every one.
 #include <cstring>
 
+#include "cvtplant/scene/calibrated_params.hpp"
 #include "cvtplant/scene/scene.hpp"
 
 namespace cvt {
 
 namespace builtin_detail {
+
+// The drive-train scenes' wrap (docs/rom.md#lump-load-split): the entry lump
+// carries the share of the driver wrap's normal load that the multibody
+// reference's strand tensions give, and the parameters fitted to the
+// reference by `cvtplant calibrate` (calibrated_params.hpp, written with
+// tools/params/calibrated.toml; docs/validation.md#calibration).
+constexpr void drive_train_wrap(RomParams& p) {
+  p.entry_load_share = 0.705;
+  calibrated::apply(p);
+}
 
 // Seed section 3 oscillator (Eq. 9) as a plant with both pulleys held:
 // r1 = 1 m so the belt speed v = r1 w1 is exact, beta0 = 0 and F_ax = m g so
@@ -48,6 +59,7 @@ constexpr Scene seed_case(const char* name, const char* summary, const FrictionP
   s.summary = summary;
   s.features = rom_feature::axial;
   s.params.friction = f;
+  drive_train_wrap(s.params);
   s.tau_in = constant_profile(seed::kInputTorque_Nm);
   s.tau_load = constant_profile(seed::kLoadTorque_Nm);
   s.clamp = constant_profile(3300.0);
@@ -69,6 +81,7 @@ constexpr Scene clamp_step() {
   s.summary = "clamping command 1.2 -> 3.0 kN at 2 s under 60 N m: flare (gross slip), then re-grip";
   s.features = rom_feature::axial | rom_feature::road_load;
   s.params.friction = friction_presets::table2_case1<double>();
+  drive_train_wrap(s.params);
   road(s);
   s.initial.omega1_rad_s = 150.0;
   s.initial.omega2_rad_s = 100.0;  // = 150 r1/r2: no slip at the start
@@ -84,6 +97,7 @@ constexpr Scene tip_in() {
   s.summary = "driver torque 20 -> 120 N m in 0.2 s at 1 s, 4 kN clamping, road load";
   s.features = rom_feature::axial | rom_feature::road_load;
   s.params.friction = friction_presets::table2_case1<double>();
+  drive_train_wrap(s.params);
   road(s);
   s.initial.omega1_rad_s = 150.0;
   s.initial.omega2_rad_s = 100.0;
@@ -99,6 +113,7 @@ constexpr Scene gross_slip() {
   s.summary = "seed torques with 1 kN clamping (capacity 39 N m): the chain slips on the driver";
   s.features = 0;
   s.params.friction = friction_presets::table2_case1<double>();
+  drive_train_wrap(s.params);
   s.tau_in = constant_profile(100.0);
   s.tau_load = constant_profile(50.0);
   s.clamp = constant_profile(1000.0);

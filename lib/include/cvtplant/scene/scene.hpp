@@ -181,6 +181,10 @@ inline SceneIssue validate_scene(const Scene& s) {
   if (!(fin(p.k2_N_m) && p.k2_N_m >= 0)) return bad("k2_N_m", "must be >= 0");
   if (!(fin(p.c1_Ns_m) && p.c1_Ns_m >= 0)) return bad("c1_Ns_m", "must be >= 0");
   if (!(fin(p.c2_Ns_m) && p.c2_Ns_m >= 0)) return bad("c2_Ns_m", "must be >= 0");
+  if (!(fin(p.entry_load_share) && p.entry_load_share > 0 && p.entry_load_share < 1))
+    return bad("entry_load_share", "must be in (0, 1)");
+  if (!(fin(p.normal_load_factor) && p.normal_load_factor > 0 && p.normal_load_factor <= 4))
+    return bad("normal_load_factor", "must be in (0, 4]");
   if (!(fin(p.stick_speed_m_s) && p.stick_speed_m_s > 0)) return bad("stick_speed_m_s", "must be > 0");
   const FrictionParams<double>& f = p.friction;
   if (!(fin(f.mu0) && f.mu0 > 0 && f.mu0 <= 2)) return bad("mu0", "must be in (0, 2]");
