@@ -11,12 +11,14 @@ namespace cvt {
 
 namespace builtin_detail {
 
-// The drive-train scenes' wrap (docs/rom.md#lump-load-split): the entry lump
-// carries the share of the driver wrap's normal load that the multibody
-// reference's strand tensions give, and the parameters fitted to the
-// reference by `cvtplant calibrate` (calibrated_params.hpp, written with
-// tools/params/calibrated.toml; docs/validation.md#calibration).
-constexpr void drive_train_wrap(RomParams& p) {
+// The wrap of the scenes the multibody reference validates (seed cases,
+// gross-slip; docs/rom.md#lump-load-split): the entry lump carries the share
+// of the driver wrap's normal load that the reference's strand tensions
+// give, and the parameters fitted to the reference by `cvtplant calibrate`
+// (calibrated_params.hpp, written with tools/params/calibrated.toml;
+// docs/validation.md#calibrated-set). clamp-step and tip-in, which the
+// reference cannot run, keep the seed's even wrap.
+constexpr void calibrated_wrap(RomParams& p) {
   p.entry_load_share = 0.705;
   calibrated::apply(p);
 }
@@ -59,7 +61,7 @@ constexpr Scene seed_case(const char* name, const char* summary, const FrictionP
   s.summary = summary;
   s.features = rom_feature::axial;
   s.params.friction = f;
-  drive_train_wrap(s.params);
+  calibrated_wrap(s.params);
   s.tau_in = constant_profile(seed::kInputTorque_Nm);
   s.tau_load = constant_profile(seed::kLoadTorque_Nm);
   s.clamp = constant_profile(3300.0);
@@ -81,7 +83,6 @@ constexpr Scene clamp_step() {
   s.summary = "clamping command 1.2 -> 3.0 kN at 2 s under 60 N m: flare (gross slip), then re-grip";
   s.features = rom_feature::axial | rom_feature::road_load;
   s.params.friction = friction_presets::table2_case1<double>();
-  drive_train_wrap(s.params);
   road(s);
   s.initial.omega1_rad_s = 150.0;
   s.initial.omega2_rad_s = 100.0;  // = 150 r1/r2: no slip at the start
@@ -97,7 +98,6 @@ constexpr Scene tip_in() {
   s.summary = "driver torque 20 -> 120 N m in 0.2 s at 1 s, 4 kN clamping, road load";
   s.features = rom_feature::axial | rom_feature::road_load;
   s.params.friction = friction_presets::table2_case1<double>();
-  drive_train_wrap(s.params);
   road(s);
   s.initial.omega1_rad_s = 150.0;
   s.initial.omega2_rad_s = 100.0;
@@ -113,7 +113,7 @@ constexpr Scene gross_slip() {
   s.summary = "seed torques with 1 kN clamping (capacity 39 N m): the chain slips on the driver";
   s.features = 0;
   s.params.friction = friction_presets::table2_case1<double>();
-  drive_train_wrap(s.params);
+  calibrated_wrap(s.params);
   s.tau_in = constant_profile(100.0);
   s.tau_load = constant_profile(50.0);
   s.clamp = constant_profile(1000.0);
