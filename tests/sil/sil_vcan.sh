@@ -63,7 +63,7 @@ t1=$(date +%s.%N)
 $PY - "$OUT/sil-junit.xml" <<'PYEOF' || fail "JUnit report"
 import sys
 import xml.etree.ElementTree as ET
-want = ["tip-in", "load-step", "clamp-loss", "lost-frames", "frozen-controller", "controller-restart",
+want = ["ratio-sweep", "kick-down", "slip-recovery", "tip-in", "load-step", "clamp-loss", "lost-frames", "frozen-controller", "controller-restart",
         "controller-flood"]
 suites = {s.get("name"): s for s in ET.parse(sys.argv[1]).getroot().iter("testsuite")}
 bad = [n for n in want if "sil." + n not in suites or suites["sil." + n].get("failures") != "0" or
@@ -186,6 +186,26 @@ ok = (rt["periods"] >= 2000 and j["max"] >= j["p99_9"] >= j["p99"] >= j["p50"] >
 print("sil_vcan: fresh-data floor %.1f (%d of %d frames overran); bridge rejected %d (%d counter jumps after "
       "%d command timeouts)" % (floor, rt["overruns"], rt["periods"], s["rx"]["rejected"], s["rx"]["wrong_sequence"],
                                 s["cmd_timeouts"]))
+sys.exit(0 if ok else 1)
+PYEOF
+# Ratio control in real time (docs/sil.md#ratio-scenarios): the variable-
+# ratio plant paced at 1 kHz, the controller free-running with set-point
+# steps 1.5 -> 1.7 -> 1.3; the controller reports the largest settled error.
+start_bridge bridge-rt-ratio --mode realtime --duration-s 60 --scene ratio-control
+"$BUILD/hil/controller/cvtplant-controller" --iface "$IF" --demand-Nm 60 --duration-s 4 \
+  --ratio-steps 0:1.5,0.5:1.7,2.5:1.3 > "$OUT/controller-rt-ratio.json" || fail "ratio controller exit status"
+stop_bridge
+$PY - "$OUT/bridge-rt-ratio.json" "$OUT/controller-rt-ratio.json" <<'PYEOF' || fail "real-time ratio control"
+import json, sys
+s = json.load(open(sys.argv[1]))
+c = json.load(open(sys.argv[2]))
+r = c["ratio"]
+print("sil_vcan: real-time ratio control: %d periods (%d overruns), plant fault %s, %d settled samples, "
+      "max |ratio - set-point| %.4f, max |slip| %.4f, %d stop-refined frames, %d shift timeouts"
+      % (s["realtime"]["periods"], s["realtime"]["overruns"], s["plant_fault"], r["settled_samples"],
+         r["max_abs_error_settled"], r["max_abs_slip"], s["stop_refined_frames"], s["shift_timeouts"]))
+ok = (s["plant_fault"] == "none" and r["settled_samples"] >= 20 and r["max_abs_error_settled"] <= 0.05 and
+      r["max_abs_slip"] <= 0.10 and c["rejected"] == 0)
 sys.exit(0 if ok else 1)
 PYEOF
 # Round trips, both ends on one CPU and on any CPU (hil/bench/sil-bench.sh

@@ -1,0 +1,115 @@
+// Ratio control law of the example controller (docs/sil.md#ratio-control):
+// tracks a geometric ratio set-point (driven / driver running radius) by the
+// balance of the driver (primary) and driven (secondary) clamping forces,
+// with the clamping level kept at a safety factor over the transmitted torque
+// and raised on detected slip. Heap-free, float only, no libm call (ctest
+// sil_controller_cortex_m4 compiles it for Cortex-M4F).
+//
+// Physics (docs/sil.md#ratio-control derives it from docs/rom.md#wedging):
+//   the chain is in radial equilibrium when F1 / F2 = kappa(ratio), the ratio
+//   of the wrap angles theta1 / theta2; a larger F1 / F2 pushes the chain out
+//   on the driver (upshift, the ratio falls), a smaller one pulls it in.
+//   The belt carries tau_cap = 2 mu0 F1 r1 / cos(beta) on the driver, whose
+//   running radius r1 now varies with the ratio.
+// Law per 10 ms period, e = ratio - ratio_target:
+//   F1 = safety * tau_ref cos(beta) / (2 mu0 r1) + slip extra    (clamping level)
+//   k  = kappa_map(ratio_target) + kp e + ki sum(e dt)            (thrust ratio)
+//   F2 = F1 / k                                                   (balance)
+#pragma once
+
+#include "cvtctl/clamp_law.hpp"
+
+namespace cvtctl {
+
+// The thrust ratio kappa = theta1 / theta2 at five geometric ratios, from the
+// transmission's geometry (pitch radii 76.2 / 114.3 mm at set-up, centre
+// distance 0.5 m, chain length held): the ECU's calibration map, linear
+// between the points, held beyond them.
+struct ThrustMap {
+  float ratio[5] = {0.8908f, 1.1567f, 1.5000f, 1.9671f, 2.6498f};
+  float kappa[5] = {1.02855f, 0.96521f, 0.90738f, 0.85419f, 0.80494f};
+  float at(float r) const {
+    if (r <= ratio[0]) return kappa[0];
+    for (int i = 1; i < 5; ++i) {
+      if (r <= ratio[i]) {
+        const float w = (r - ratio[i - 1]) / (ratio[i] - ratio[i - 1]);
+        return kappa[i - 1] + w * (kappa[i] - kappa[i - 1]);
+      }
+    }
+    return kappa[4];
+  }
+};
+
+struct RatioLawParams {
+  ClampLawParams clamp{};        // mu0, cos(beta), safety, limits, the slip loop
+  ThrustMap map{};
+  float kp = 0.20f;              // thrust ratio per unit of ratio error
+  float ki = 0.40f;              // thrust ratio per unit of ratio error and second
+  float integral_max = 0.15f;    // bound of the integral part (anti-windup)
+  float thrust_min = 0.60f, thrust_max = 1.40f;
+  float period_s = 0.01f;
+};
+
+struct RatioLawInputs {
+  float torque_demand_Nm = 0.0f;
+  float ratio_target = 1.5f;             // geometric ratio set-point (driven / driver)
+  float torque_transmitted_Nm = 0.0f;    // PlantSpeeds
+  float slip = 0.0f;                     // PlantRatio
+  float geometric_ratio = 1.5f;          // PlantRatio
+  float radius_driver_m = 0.0762f;       // PlantShift
+  bool plant_data_valid = false;
+};
+
+struct RatioLawOutputs {
+  float driver_clamp_cmd_N = 0.0f;   // CtrlCmd.clamp_force_cmd_N
+  float driven_clamp_cmd_N = 0.0f;   // CtrlShiftCmd.driven_clamp_force_cmd_N
+  float driver_torque_req_Nm = 0.0f;
+  float thrust_ratio = 1.0f;
+};
+
+class RatioLaw {
+ public:
+  explicit constexpr RatioLaw(const RatioLawParams& p = {}) : p_(p) {}
+
+  RatioLawOutputs step(const RatioLawInputs& in) {
+    RatioLawOutputs out;
+    out.driver_torque_req_Nm = in.torque_demand_Nm;
+    const ClampLawParams& c = p_.clamp;
+    const float a = abs_f(in.torque_demand_Nm);
+    float tau_ref = a, r1 = last_r1_m_, err = 0.0f;
+    if (in.plant_data_valid) {
+      const float excess = abs_f(in.slip) - c.slip_limit;
+      extra_N_ = extra_N_ * c.extra_decay_per_period + (excess > 0.0f ? c.slip_gain_N * excess : 0.0f);
+      extra_N_ = clamp_f(extra_N_, 0.0f, c.extra_max_N);
+      const float b = abs_f(in.torque_transmitted_Nm);
+      tau_ref = a > b ? a : b;
+      r1 = clamp_f(in.radius_driver_m, 0.02f, 0.2f);
+      last_r1_m_ = r1;
+      err = in.geometric_ratio - in.ratio_target;
+      integral_ = clamp_f(integral_ + p_.ki * err * p_.period_s, -p_.integral_max, p_.integral_max);
+    }
+    // Without fresh data: the clamping for the demand at the last known
+    // radius, the thrust ratio from the map and the held integral.
+    const float level = c.safety * tau_ref * c.cos_beta / (2.0f * c.mu0 * r1);
+    const float f1 = clamp_f(level + extra_N_, c.clamp_min_N, c.clamp_max_N);
+    const float k = clamp_f(p_.map.at(in.ratio_target) + p_.kp * err + integral_, p_.thrust_min, p_.thrust_max);
+    out.thrust_ratio = k;
+    out.driver_clamp_cmd_N = f1;
+    out.driven_clamp_cmd_N = clamp_f(f1 / k, c.clamp_min_N, c.clamp_max_N);
+    return out;
+  }
+
+  void reset() {
+    extra_N_ = 0.0f;
+    integral_ = 0.0f;
+    last_r1_m_ = 0.0762f;
+  }
+  float extra_N() const { return extra_N_; }
+  const RatioLawParams& params() const { return p_; }
+
+ private:
+  RatioLawParams p_;
+  float extra_N_ = 0.0f, integral_ = 0.0f, last_r1_m_ = 0.0762f;
+};
+
+}  // namespace cvtctl
