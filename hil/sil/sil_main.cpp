@@ -583,7 +583,7 @@ ScenarioResult run_scenario(const Scenario& sc, Harness& h, FaultInjector& hf, c
     if (sc.ratio_target) {
       // The capacity at the driver's running radius (docs/sil.md#ratio-control).
       const float r1 = s.radius1_m > 0.01f ? s.radius1_m : law.r1_m;
-      s.safety = 2.0f * law.mu0 * s.axial_N * r1 / law.cos_beta / tau;
+      s.safety = cvtctl::torque_capacity_at_Nm(law, s.axial_N, r1) / tau;
     }
     trace.push_back(s);
   }

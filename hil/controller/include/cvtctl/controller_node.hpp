@@ -112,14 +112,7 @@ class ControllerNode {
     cvt::can::CtrlShiftCmd cmd;
     cmd.driven_clamp_force_cmd_N = clamp_f(last_ratio_out_.driven_clamp_cmd_N, 0.0f, 60000.0f);
     cmd.ratio_target = clamp_f(last_ratio_target_, 0.0f, 6.5f);
-    cvt::can::CanFrame f;
-    if (tx_shift_.encode(cmd, f) != cvt::can::CodecStatus::Ok) {
-      ++counters_.tx_failed;
-      return cvt::port::CanIoStatus::InvalidFrame;
-    }
-    const cvt::port::CanIoStatus st = bus_.send(f);
-    if (st != cvt::port::CanIoStatus::Ok) ++counters_.tx_failed;
-    return st;
+    return send_message(cmd, tx_shift_);
   }
 
   // The last command once more, with the next E2E counter (a controller that
@@ -128,8 +121,14 @@ class ControllerNode {
     cvt::can::CtrlCmd cmd;
     cmd.clamp_force_cmd_N = last_out_.clamp_force_cmd_N;
     cmd.driver_torque_req_Nm = clamp_f(last_out_.driver_torque_req_Nm, -600.0f, 600.0f);
+    return send_message(cmd, tx_);
+  }
+
+  // Encodes (next E2E counter) and sends one command; failures are counted.
+  template <class Msg>
+  cvt::port::CanIoStatus send_message(const Msg& m, cvt::can::TxChannel<Msg>& ch) {
     cvt::can::CanFrame f;
-    if (tx_.encode(cmd, f) != cvt::can::CodecStatus::Ok) {
+    if (ch.encode(m, f) != cvt::can::CodecStatus::Ok) {
       ++counters_.tx_failed;
       return cvt::port::CanIoStatus::InvalidFrame;
     }

@@ -78,9 +78,7 @@ class RatioLaw {
     const float a = abs_f(in.torque_demand_Nm);
     float tau_ref = a, r1 = last_r1_m_, err = 0.0f;
     if (in.plant_data_valid) {
-      const float excess = abs_f(in.slip) - c.slip_limit;
-      extra_N_ = extra_N_ * c.extra_decay_per_period + (excess > 0.0f ? c.slip_gain_N * excess : 0.0f);
-      extra_N_ = clamp_f(extra_N_, 0.0f, c.extra_max_N);
+      extra_N_ = slip_extra_next_N(c, extra_N_, in.slip);
       const float b = abs_f(in.torque_transmitted_Nm);
       tau_ref = a > b ? a : b;
       r1 = clamp_f(in.radius_driver_m, 0.02f, 0.2f);
@@ -90,7 +88,7 @@ class RatioLaw {
     }
     // Without fresh data: the clamping for the demand at the last known
     // radius, the thrust ratio from the map and the held integral.
-    const float level = c.safety * tau_ref * c.cos_beta / (2.0f * c.mu0 * r1);
+    const float level = c.safety * clamp_for_torque_at_N(c, tau_ref, r1);
     const float f1 = clamp_f(level + extra_N_, c.clamp_min_N, c.clamp_max_N);
     const float k = clamp_f(p_.map.at(in.ratio_target) + p_.kp * err + integral_, p_.thrust_min, p_.thrust_max);
     out.thrust_ratio = k;
