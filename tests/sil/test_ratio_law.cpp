@@ -49,10 +49,15 @@ TEST_CASE("ratio law: a ratio above the set-point raises the thrust ratio (upshi
   // Proportional part plus one period of the integral, exactly.
   const cvtctl::RatioLawParams p;
   CHECK(u.thrust_ratio == doctest::Approx(k_map + p.kp * 0.2f + p.ki * 0.2f * p.period_s).epsilon(1e-5));
-  // The integral keeps growing while the error stays, up to its bound.
+  // The integral keeps growing while the error stays; the whole correction
+  // stays within correction_max of the map (below the radial breakaway).
   float last = u.thrust_ratio;
   for (int i = 0; i < 1000; ++i) last = up.step(at(1.7f, 1.5f, 0.0762f, 60.0f)).thrust_ratio;
-  CHECK(last == doctest::Approx(k_map + p.kp * 0.2f + p.integral_max).epsilon(1e-5));
+  CHECK(p.kp * 0.2f + p.integral_max > p.correction_max);
+  CHECK(last == doctest::Approx(k_map + p.correction_max).epsilon(1e-5));
+  cvtctl::RatioLaw far;
+  CHECK(far.step(at(0.9f, 2.6f, 0.0762f, 60.0f)).thrust_ratio ==
+        doctest::Approx(cvtctl::ThrustMap{}.at(2.6f) - p.correction_max).epsilon(1e-5));
 }
 
 TEST_CASE("ratio law: slip raises both clampings in proportion, so the balance does not move") {

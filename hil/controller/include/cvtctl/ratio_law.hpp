@@ -43,9 +43,14 @@ struct ThrustMap {
 struct RatioLawParams {
   ClampLawParams clamp{};        // mu0, cos(beta), safety, limits, the slip loop
   ThrustMap map{};
-  float kp = 0.20f;              // thrust ratio per unit of ratio error
-  float ki = 0.40f;              // thrust ratio per unit of ratio error and second
-  float integral_max = 0.15f;    // bound of the integral part (anti-windup)
+  float kp = 0.60f;              // thrust ratio per unit of ratio error
+  float ki = 0.30f;              // thrust ratio per unit of ratio error and second
+  float integral_max = 0.10f;    // bound of the integral part (anti-windup)
+  // Bound of the whole correction around the map: the radial friction lets
+  // the chain creep at about 3.5 ratio/s per unit of thrust-ratio error up
+  // to 0.17, and break away (a jump to the stop, slip 0.24) at 0.3
+  // (docs/sil.md#ratio-control).
+  float correction_max = 0.20f;
   float thrust_min = 0.60f, thrust_max = 1.40f;
   float period_s = 0.01f;
 };
@@ -90,7 +95,8 @@ class RatioLaw {
     // radius, the thrust ratio from the map and the held integral.
     const float level = c.safety * clamp_for_torque_at_N(c, tau_ref, r1);
     const float f1 = clamp_f(level + extra_N_, c.clamp_min_N, c.clamp_max_N);
-    const float k = clamp_f(p_.map.at(in.ratio_target) + p_.kp * err + integral_, p_.thrust_min, p_.thrust_max);
+    const float corr = clamp_f(p_.kp * err + integral_, -p_.correction_max, p_.correction_max);
+    const float k = clamp_f(p_.map.at(in.ratio_target) + corr, p_.thrust_min, p_.thrust_max);
     out.thrust_ratio = k;
     out.driver_clamp_cmd_N = f1;
     out.driven_clamp_cmd_N = clamp_f(f1 / k, c.clamp_min_N, c.clamp_max_N);

@@ -26,10 +26,11 @@ struct RomSimConfig {
   // (docs/rom.md#slope-floor; the wedging plants add it to their dense W);
   // no effect on the explicit methods.
   bool w_slope_floor = true;
-  // Wedging: a frame that starts or ends with the chain on a radial end stop
-  // is taken again with this many times the substeps, so the stop's 2.8 ms
-  // ring is resolved only while it acts (docs/rom.md#end-stop); 1 = never.
-  int stop_substeps = 4;
+  // Wedging: a frame that starts or ends on a radial end stop, or close
+  // enough to reach it within the frame, is taken with this many times the
+  // substeps, so the stop's 2.8 ms ring is resolved only where it can act
+  // (docs/rom.md#end-stop); 1 = never.
+  int stop_substeps = 2;
 };
 
 template <class T, std::uint32_t Features = 0>
@@ -53,7 +54,8 @@ class RomSimulator {
         driven_N_(p.driven_clamp_N),
         // Exact discretisation of the first-order actuator over one frame:
         // F += (F_cmd - F)(1 - exp(-frame / tau_h)) (docs/rom.md#driven-clamping).
-        driven_lag_(1.0 - dm::exp(-c.frame_s / p.actuator_tau_s)) {
+        driven_lag_(1.0 - dm::exp(-c.frame_s / p.actuator_tau_s)),
+        frame_(T(c.frame_s / Plant::U::time_s)) {
     x_.setZero();
   }
 
@@ -113,14 +115,14 @@ class RomSimulator {
     const int n = cfg_.substeps < 1 ? 1 : cfg_.substeps;
     RomFault f = RomFault::none;
     if constexpr (Plant::Layout::kWedge) {
-      // docs/rom.md#end-stop: a frame that starts on a stop takes the finer
-      // steps at once; one that ends on it is taken again with them.
+      // docs/rom.md#end-stop: a frame that starts near a stop takes the
+      // finer steps at once; one that ends near it is taken again with them.
       const bool refine = cfg_.stop_substeps > 1;
-      if (refine && on_stop(x_prev)) {
+      if (refine && near_stop(x_prev)) {
         f = integrate_stop(n);
       } else {
         f = integrate(n, h_, h_acc_);
-        if (refine && f == RomFault::none && on_stop(x_)) {
+        if (refine && f == RomFault::none && near_stop(x_)) {
           x_ = x_prev;
           contact_ = contact_prev;
           ledger_ = ledger_prev;
@@ -220,8 +222,15 @@ class RomSimulator {
     return integrate(m, T(hs / Plant::U::time_s), Acc(hs));
   }
 
-  // The chain on a radial end stop (wedging).
-  bool on_stop(const State& x) const { return plant_.stop_penetration(x(Plant::Layout::kRho)) != T(0); }
+  // The chain on a radial end stop, or close enough to reach it within a
+  // frame at its present radial speed (wedging): a bounce shorter than a
+  // frame starts and ends off the stop (docs/rom.md#end-stop).
+  bool near_stop(const State& x) const {
+    using L = typename Plant::Layout;
+    const T rho = x(L::kRho), rhod = x(L::kRhoDot);
+    const T reach = (rho < T(0) ? -rho : rho) + (rhod < T(0) ? -rhod : rhod) * frame_;
+    return !(reach < plant_.constants().travel);
+  }
 
   // docs/rom.md#driven-clamping: the driven actuator's frame update. The
   // driven clamping acts on the chain as a potential, -2 tan(beta0) F_ax2
@@ -250,6 +259,7 @@ class RomSimulator {
   bool contact_stale_ = true;
   long frames_ = 0;
   double driven_cmd_N_, driven_N_, driven_lag_;
+  T frame_;  // one frame in the plant's time unit
   Acc driven_work_{};
   long stop_refined_ = 0;
 };
