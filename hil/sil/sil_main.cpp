@@ -343,16 +343,16 @@ void add_ratio_scenarios(std::vector<Scenario>& v) {
     if (t < 14.0) return 2.9f;  // beyond the underdrive stop (2.65)
     return 0.8f;                // beyond the overdrive stop (0.89)
   };
-  sw.t_end_s = 16.0;
+  sw.t_end_s = 17.5;
   sw.track_bound = 0.05;
   sw.expect_end_stop = true;
   v.push_back(sw);
-  Scenario kd{"kick-down", "ratio 1.0 at 40 N m; at 2 s tip-in to 120 N m over 0.2 s and set-point 1.0 -> 2.0", 5.0,
+  Scenario kd{"kick-down", "ratio 1.0 at 40 N m; at 2 s tip-in to 120 N m over 0.2 s and set-point 1.0 -> 2.0", 5.5,
               [](double t) { return ramp(t, 2.0, 2.2, 40.0f, 120.0f); }};
   kd.scene = cvt::can::SceneId::RatioControl;
   kd.ratio_target = [](double t) { return t < 0.5 ? 1.5f : (t < 2.0 ? 1.0f : 2.0f); };
   kd.track_bound = 0.05;
-  kd.settle_s = 1.5;
+  kd.settle_s = 2.0;
   v.push_back(kd);
   Scenario sr{"slip-recovery", "ratio 1.5 at 100 N m; the clamping supply drops to 20 % for 500 ms at 1 s, then back",
               3.5, [](double) { return 100.0f; }};
