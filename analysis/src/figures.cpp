@@ -28,17 +28,22 @@ void ensure_dir(const std::string& d) {
   if (mkdir(d.c_str(), 0755) != 0) throw InputError("cannot create directory '" + d + "'");
 }
 
-namespace {
-
-std::ofstream open(const std::string& path) {
+std::ofstream open_text_file(const std::string& path) {
   std::ofstream f(path);
   if (!f) throw InputError("cannot write '" + path + "'");
   f.precision(10);
   return f;
 }
 
-// noenhanced: names like belt_speed_m_s are printed literally, not as subscripts.
-const char* kTerm = "set terminal pngcairo size 900,600 font 'DejaVu Sans,11' noenhanced\nset grid\n";
+std::string png_terminal(int width_px, int height_px) {
+  // noenhanced: names like belt_speed_m_s are printed literally, not as subscripts.
+  return "set terminal pngcairo size " + std::to_string(width_px) + "," + std::to_string(height_px) +
+         " font 'DejaVu Sans,11' noenhanced\n";
+}
+
+namespace {
+
+const std::string kTerm = png_terminal(900, 600) + "set grid\n";
 
 }  // namespace
 
@@ -78,23 +83,23 @@ std::vector<std::string> series_figures(const std::vector<double>& x_raw, double
   const LleResult lle = lle_rosenstein(x, lo);
   const std::string D = out_dir + "/";
   {
-    auto f = open(D + "series.dat");
+    auto f = open_text_file(D + "series.dat");
     for (std::size_t i = 0; i < x_raw.size(); ++i) f << i * dt << ' ' << x_raw[i] << ' ' << x[i] << '\n';
-    auto g = open(D + "delay.dat");
+    auto g = open_text_file(D + "delay.dat");
     for (std::size_t i = 0; i + 2 * tau < x.size(); ++i) g << x[i] << ' ' << x[i + tau] << ' ' << x[i + 2 * tau] << '\n';
-    auto a = open(D + "ami.dat");
+    auto a = open_text_file(D + "ami.dat");
     for (std::size_t k = 0; k < ami.ami.size(); ++k) a << k << ' ' << ami.ami[k] << ' ' << ami.acf[k] << '\n';
-    auto n = open(D + "fnn.dat");
+    auto n = open_text_file(D + "fnn.dat");
     for (std::size_t k = 0; k < fnn.m.size(); ++k)
       n << fnn.m[k] << ' ' << fnn.fraction[k] << ' ' << fnn.fraction_rtol[k] << ' ' << fnn.fraction_atol[k] << ' '
         << cr.e1[k] << ' ' << cr.e2[k] << '\n';
-    auto d = open(D + "divergence.dat");
+    auto d = open_text_file(D + "divergence.dat");
     for (std::size_t k = 0; k < lle.divergence.size(); ++k) d << k * dt << ' ' << lle.divergence[k] << '\n';
   }
   const double t0 = lle.fit.k_begin * dt, t1 = lle.fit.k_end * dt;
   const double y0 = lle.divergence[lle.fit.k_begin];
   {
-    auto s = open(D + "series.gp");
+    auto s = open_text_file(D + "series.gp");
     s << kTerm;
     s << "set output '" << D << "time_history.png'\nset title '" << label << ": time history'\nset xlabel 't'\n"
       << "plot '" << D << "series.dat' u 1:2 w l notitle\n";
@@ -133,7 +138,7 @@ std::string run_time_history_figure(const std::vector<double>& x, double dt, lon
   const std::string D = out_dir + "/";
   double lo = x[0], hi = x[0];
   {
-    auto f = open(D + "run.dat");
+    auto f = open_text_file(D + "run.dat");
     f.precision(15);
     for (std::size_t i = 0; i < x.size(); ++i) {
       f << i * dt << ' ' << x[i] << '\n';
@@ -145,7 +150,7 @@ std::string run_time_history_figure(const std::vector<double>& x, double dt, lon
   const double pad = hi - lo > 1e-9 * std::max(std::abs(hi), std::abs(lo)) ? 0.05 * (hi - lo)
                                                                            : std::max(1.0, 0.01 * std::abs(hi));
   const double t_tr = discard * dt;
-  auto s = open(D + "run.gp");
+  auto s = open_text_file(D + "run.gp");
   s.precision(15);
   s << kTerm << "set output '" << D << "run_time_history.png'\nset title '" << label
     << ": whole run (shaded: transient, not analysed)'\nset xlabel 't [s]'\nset yrange [" << lo - pad << ":"
@@ -165,7 +170,7 @@ std::vector<std::string> model_figures(const Model& sc, const Params& p, const s
   const double sample = sc.is_map ? 1.0 : std::max(dt, t_end / 20000);
   const std::vector<double> rows = sc.trajectory(p, x0, dt, 0.0, t_end, sample);
   {
-    auto f = open(D + "scene.dat");
+    auto f = open_text_file(D + "scene.dat");
     const std::size_t n = rows.size() / sc.dim;
     for (std::size_t i = 0; i < n; ++i) {
       f << (i + 1) * sample;
@@ -174,7 +179,7 @@ std::vector<std::string> model_figures(const Model& sc, const Params& p, const s
     }
   }
   std::vector<std::string> out;
-  auto s = open(D + "scene.gp");
+  auto s = open_text_file(D + "scene.gp");
   s << kTerm;
   s << "set output '" << D << "scene_time_history.png'\nset title '" << sc.name << ": time history'\nset xlabel 't'\nplot ";
   for (int k = 0; k < sc.dim; k += (sc.dim == 4 ? 2 : 1))
@@ -209,8 +214,8 @@ std::vector<std::string> sweep_figures(const std::string& sweep_csv, const std::
   }
   const bool two_d = sig.find(" a2=") != std::string::npos;
   const std::string D = out_dir + "/";
-  auto bif = open(D + "bifurcation.dat");
-  auto lam = open(D + "exponents.dat");
+  auto bif = open_text_file(D + "bifurcation.dat");
+  auto lam = open_text_file(D + "exponents.dat");
   long line_no = 2;
   std::size_t peaks_col = 0;
   for (std::size_t i = 0; i < cols.size(); ++i)
@@ -237,7 +242,7 @@ std::vector<std::string> sweep_figures(const std::string& sweep_csv, const std::
   }
   bif.close();
   lam.close();
-  auto s = open(D + "sweep.gp");
+  auto s = open_text_file(D + "sweep.gp");
   s << kTerm;
   s << "set output '" << D << "bifurcation.png'\nset title 'bifurcation diagram (local maxima)'\nset xlabel '" << cols[1]
     << "'\nset ylabel 'peak value'\n";

@@ -41,7 +41,8 @@ const char kUsage[] =
     "                        dbc (default): the DBC's ramps from the last applied\n"
     "                        values (clamp to 20 kN at 50 kN/s, torque to 0 at\n"
     "                        250 N m/s); hold-last: keep the last applied values\n"
-    "  --ready-file FILE     created once the interface is open\n"
+    "  --ready-file FILE     created once the bridge serves the bus (interface open, scene\n"
+    "                        loaded, priority set, real time started)\n"
     "  -h, --help            this text\n"
     "Exit status: 0 done, 1 run failure (interface, scene), 2 bad command line.\n";
 
@@ -244,17 +245,19 @@ int main(int argc, char** argv) {
                  o.scene.c_str());
     return 1;
   }
-  if (!o.ready_file.empty()) {
-    if (std::FILE* r = std::fopen(o.ready_file.c_str(), "w")) std::fclose(r);
-  }
-
   RtReport rt;
   std::vector<std::int64_t> lateness;
+  // Priority and locked memory first: mlockall can take seconds in a starved
+  // VM, and neither the command deadline (monitored from real-time entry)
+  // nor a peer waiting for the ready file should count that time.
+  if (o.sched_fifo > 0) try_realtime_priority(o.sched_fifo, rt);
   if (o.realtime) {
     lateness.reserve(static_cast<std::size_t>(o.duration_s * 1e9 / static_cast<double>(bridge.frame_ns())) + 16);
     bridge.start_realtime();
   }
-  if (o.sched_fifo > 0) try_realtime_priority(o.sched_fifo, rt);
+  if (!o.ready_file.empty()) {
+    if (std::FILE* r = std::fopen(o.ready_file.c_str(), "w")) std::fclose(r);
+  }
   const std::int64_t end_ns = static_cast<std::int64_t>(o.duration_s * 1e9 + 0.5);
   std::int64_t last_rx_ns = clock.now_ns();
   std::uint64_t seen = 0;

@@ -2,6 +2,7 @@
 // The seed's kinds of figures as PNG (docs/analysis.md#figures), drawn by
 // gnuplot (Debian gnuplot-nox, pngcairo terminal) from data files written next
 // to the images; recurrence plots are written directly with libpng.
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,14 @@ std::vector<std::string> sweep_figures(const std::string& sweep_csv, const std::
 
 // Creates directory d (one level) unless it exists; InputError otherwise.
 void ensure_dir(const std::string& d);
+
+// A data file or gnuplot script to write next to the figures (10 significant
+// digits); InputError if it cannot be opened.
+std::ofstream open_text_file(const std::string& path);
+
+// The first line of every figure script: PNG through cairo, w x h pixels,
+// the figures' font, labels printed literally.
+std::string png_terminal(int width_px, int height_px);
 
 // Runs gnuplot on a script; throws std::runtime_error if it fails.
 void run_gnuplot(const std::string& script_path);

@@ -1,0 +1,149 @@
+#pragma once
+// The planar multibody chain CVT of seed section 2 as a first-order ODE
+// y' = f(t, y) (docs/mbd.md#equations-of-motion):
+//   N links, each a planar rigid body (x, y, theta) with velocities;
+//   two pulleys, each one rotational DOF (angle, speed);
+//   in clamped-sheave mode one axial DOF (opening, rate) per movable sheave;
+//   five energy-ledger integrals (input work, load work, friction loss,
+//   damping loss, clamping work), integrated with the states.
+// Offline code: heap and exceptions are fine here.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "cvtplant/mbd/elements.hpp"
+#include "cvtplant/mbd/geometry.hpp"
+#include "cvtplant/mbd/params.hpp"
+
+namespace cvt::mbd {
+
+// Compressed sparse column pattern of the Jacobian (structurally every
+// entry that can be non-zero in any configuration, plus the diagonal).
+struct SparsePattern {
+  int n = 0;
+  std::vector<std::int64_t> col_start;  // n + 1
+  std::vector<std::int64_t> row;        // nnz
+  std::int64_t nnz() const { return col_start.empty() ? 0 : col_start.back(); }
+};
+
+// One output sample (docs/mbd.md#outputs). Pulley j = 0 driver, 1 driven.
+struct Sample {
+  double t_s = 0;
+  double omega_rad_s[2] = {0, 0};
+  double phi_rad[2] = {0, 0};
+  double ratio = 0;               // omega1 / omega2 (NaN while omega2 = 0)
+  double F_ax_N[2] = {0, 0};      // sum of the bolt forces on each pulley
+  double chain_torque_Nm[2] = {0, 0};  // moment of the contact forces on each pulley
+  double tau_in_Nm = 0;           // torque on the driver (a speed hold: the holding torque)
+  double tau_load_Nm = 0;         // load torque on the driven pulley (or its holding torque)
+  double slip_m_s[2] = {0, 0};    // pulley surface speed minus chain speed, mean over the wrap
+  double tension_tight_N = 0;     // upper strand (into the driver wrap); NaN if no free joint
+  double tension_slack_N = 0;     // lower strand
+  int wrap_links[2] = {0, 0};     // links whose bolt is compressed by each pulley
+  double sheave_opening_m[2] = {0, 0};
+  double clamp_N[2] = {0, 0};     // clamping force (clamped mode)
+  // Energy ledger, from the release (t = 0): W_in - W_load - D_fric - D_damp
+  // + W_clamp = (E_kin + E_el)(t) - (E_kin + E_el)(0).
+  double W_in_J = 0, W_load_J = 0, D_friction_J = 0, D_damping_J = 0, W_clamp_J = 0;
+  double E_kin_J = 0, E_el_J = 0;
+};
+
+// One link at one instant (per-link output, pictures).
+struct LinkState {
+  double x_m, y_m, theta_rad;
+  double rear_x_m, rear_y_m, front_x_m, front_y_m;  // pins; the bolt is at the front pin
+  int pulley;          // -1 free, 0 driver, 1 driven (bolt compressed)
+  double bolt_force_N;
+  double slip_m_s;     // |g|, slip speed of the bolt on the sheave (0 when free)
+  double tension_N;    // force in the joint to the next link
+};
+
+// Why a right-hand side could not be evaluated (the first bad quantity).
+struct Fault {
+  bool set = false;
+  double t_s = 0;
+  std::string quantity;
+};
+
+class ChainModel {
+ public:
+  explicit ChainModel(const MbdParams& p);
+
+  enum class Phase { settle, run };
+  // Settle: both pulleys held at rest, drag on the links, no loads. Run:
+  // the loads (or speed holds) of the parameters.
+  void set_phase(Phase ph) { phase_ = ph; }
+  Phase phase() const { return phase_; }
+
+  int links() const { return n_links_; }
+  int size() const { return n_; }  // ODE states, ledger included
+  const DriveGeometry& geometry() const { return geo_; }
+  const MbdParams& params() const { return p_; }
+
+  // Layout (docs/mbd.md#state).
+  static int link_state(int i, int k) { return 6 * i + k; }  // k: x, y, theta, vx, vy, omega
+  int pulley_angle(int j) const { return 6 * n_links_ + 2 * j; }
+  int pulley_speed(int j) const { return 6 * n_links_ + 2 * j + 1; }
+  int sheave_opening(int j) const { return sheave_base_ + 2 * j; }  // clamped only
+  int sheave_rate(int j) const { return sheave_base_ + 2 * j + 1; }
+  int ledger(int k) const { return ledger_base_ + k; }  // 0 W_in, 1 W_load, 2 D_fric, 3 D_damp, 4 W_clamp
+  bool clamped() const { return p_.sheaves == SheaveMode::clamped; }
+  // Error-weight scale of state i (docs/mbd.md#tolerances): the solver's
+  // weight is 1 / (rtol (a_i |y_i| + scale_i)).
+  double tolerance_scale(int i) const;
+  double tolerance_relative(int i) const;
+  // Kinetic energy of the system with every velocity at its tolerance scale
+  // [J]: the energy resolution the absolute tolerances describe.
+  double tolerance_energy_J() const;
+
+  // The chain wrapped on the pitch line, at rest, pulleys at zero.
+  std::vector<double> initial_state() const;
+  // Sets the ledger integrals to zero (at the release).
+  void reset_ledger(double* y) const;
+
+  // dy/dt. Returns false when a force is not finite (fault() says which).
+  bool rhs(double t_s, const double* y, double* dydt) const;
+  const Fault& fault() const { return fault_; }
+
+  const SparsePattern& pattern() const { return pattern_; }
+  // Jacobian values in pattern() order, from the elements' dual-number
+  // derivatives (exact for the smoothed model).
+  void jacobian(double t_s, const double* y, double* values) const;
+
+  Sample sample(double t_s, const double* y) const;
+  double energy_J(const double* y) const;  // E_kin + E_el
+  std::vector<LinkState> link_states(const double* y) const;
+
+  // Checks a state for what no physical run reaches (non-finite, a joint
+  // stretched beyond 2 L, a link off the drive, runaway speed). Returns the
+  // quantity's description, empty if the state is fine.
+  std::string state_problem(const double* y) const;
+
+  double clamp_force(int j, double t_s) const;
+  double stop_force(double opening_m) const;  // the movable sheave's end stops [N]
+
+ private:
+  void build_pattern();
+  double applied_torque(int j, double chain_moment) const;
+
+  MbdParams p_;
+  DriveGeometry geo_;
+  Phase phase_ = Phase::run;
+  int n_links_, n_, sheave_base_, ledger_base_;
+  double inertia_;
+  double thrust_ratio_;  // theta2 / theta1: static clamp ratio for the driven default
+  SparsePattern pattern_;
+  std::vector<std::int32_t> index_;  // dense (row * n + col) -> position in pattern, -1 if absent
+  detail::ChainConst chain_;
+  detail::ChainConst settle_chain_;  // the same without friction (docs/mbd.md#start-up)
+  const detail::ChainConst& chain() const { return phase_ == Phase::settle ? settle_chain_ : chain_; }
+  detail::PulleyConst pulley_[2];
+  mutable Fault fault_;
+  // Right-hand side scratch: forces (3 per link), cosine and sine of each link angle.
+  mutable std::vector<double> force_, cos_, sin_;
+  void link_trig(const double* y) const;  // fills cos_, sin_
+  detail::JointForces<double> joint(const double* y, int i) const;  // joint i -> i+1 (after link_trig)
+  detail::ContactForces<double> contact(const double* y, int i, int j, double omega, double opening) const;
+};
+
+}  // namespace cvt::mbd

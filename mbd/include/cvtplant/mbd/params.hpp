@@ -1,0 +1,86 @@
+#pragma once
+// Parameters of the planar multibody chain CVT (docs/mbd.md#parameters):
+// seed Table 1 (chain, pulleys, bolts), Table 2 (friction, through the core's
+// presets), the seed's section-4 load case, and the choices the seed leaves
+// open (link count, link inertia, start-up, sheave mode), each with the
+// reason given in docs/mbd.md.
+#include <utility>
+#include <vector>
+
+#include "cvtplant/friction/friction_law.hpp"
+#include "cvtplant/physics/seed.hpp"
+
+namespace cvt::mbd {
+
+// Fixed sheaves: the groove is rigid and fixed on the shaft (the seed's
+// pulleys). Clamped: one sheave of each pulley is free to move axially and is
+// pushed closed by a given force (docs/mbd.md#clamped-sheaves).
+enum class SheaveMode { fixed, clamped };
+
+// Axial clamping force as a function of time: piecewise linear through
+// (t_s, force_N) points, held constant before the first and after the last.
+struct ForceProfile {
+  std::vector<std::pair<double, double>> points;  // strictly increasing t_s
+  double at(double t_s) const;
+  bool empty() const { return points.empty(); }
+};
+
+// A pulley speed imposed kinematically (a test rig's motor): from the release
+// on the pulley runs at omega_rad_s whatever the chain does (a speed step at
+// t = 0), and the torque that holds it is booked as input (driver) or load
+// (driven) work in the energy ledger.
+struct SpeedHold {
+  bool active = false;
+  double omega_rad_s = 0.0;
+};
+
+struct MbdParams {
+  // --- seed Table 1 and section 4 (docs/mbd.md#parameters)
+  double beta0_rad = seed::kHalfSheaveAngle_rad;  // non-deformed half sheave angle
+  double center_distance_m = seed::kCenterDistance_m;
+  double link_mass_kg = seed::kLinkMass_kg;
+  double J1_kgm2 = seed::kDriverInertia_kgm2;
+  double J2_kgm2 = seed::kDrivenInertia_kgm2;
+  double link_length_m = seed::kLinkLength_m;             // L: distance between a link's two pins
+  double bolt_stiffness_N_m = seed::kBlockStiffness_N_m;  // K_b (Eq. 5)
+  double bolt_length_m = seed::kBlockLength_m;            // l_b (Eq. 5)
+  double joint_stiffness_N_m = seed::kChainStiffness_N_m;  // k, force element between links
+  double joint_damping_Ns_m = seed::kChainDamping_Ns_m;    // p, force element between links
+  double r1_m = seed::kDriverPitchRadius_m;  // driver pitch radius (bolt unloaded touches both flanks here)
+  double r2_m = seed::kDrivenPitchRadius_m;  // driven pitch radius
+  // --- choices the seed leaves open (docs/mbd.md#open-choices)
+  int links = 44;                  // N: fills the pitch line with about 520 N of pretension
+  double link_inertia_kgm2 = -1;   // <= 0: slender bar, m L^2 / 12
+  bool sheave_deformation = true;  // seed Eq. 3-4 on both pulleys
+  // --- friction (seed Eq. 6, Table 2), the core's laws and sign smoothing
+  FrictionParams<double> friction = friction_presets::table2_case1<double>();
+  // --- loads (seed section 4): constant torques from the release on
+  double tau_in_Nm = seed::kInputTorque_Nm;
+  double tau_load_Nm = seed::kLoadTorque_Nm;
+  SpeedHold hold1, hold2;
+  // --- sheaves
+  SheaveMode sheaves = SheaveMode::fixed;
+  ForceProfile clamp1_N;  // driver; required in clamped mode
+  ForceProfile clamp2_N;  // driven; empty: clamp1 times the static thrust ratio theta2/theta1
+  double sheave_mass_kg = 2.0;         // movable sheave (the real-time plant's value)
+  double sheave_damping_Ns_m = 1045.0;  // zeta ~ 0.3 against the wrap's axial stiffness
+  // Ratio end stops: the movable sheave travels +-2 tan(beta0) x 25 mm, the
+  // real-time plant's +-25 mm of chain travel in the groove (hub and rim),
+  // against a stiff stop (its 1e7 N/m radial stop seen axially).
+  double sheave_stop_m = 0.013397459621556135;
+  double sheave_stop_N_m = 3.5e7;
+  // --- start-up (docs/mbd.md#start-up): chain wrapped on the pitch line,
+  // pulleys held, a light drag on the links while it settles; released at t = 0.
+  double settle_s = 0.1;
+  double settle_drag_Ns_m = 20.0;
+
+  double link_inertia() const {
+    return link_inertia_kgm2 > 0 ? link_inertia_kgm2 : link_mass_kg * link_length_m * link_length_m / 12.0;
+  }
+};
+
+// The seed's section-4 scenario: tau_in = 100 N m, tau_load = 50 N m, Table 1,
+// friction case 1 or 2 of Table 2.
+MbdParams seed_case(int friction_case);
+
+}  // namespace cvt::mbd

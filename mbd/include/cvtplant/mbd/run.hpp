@@ -1,0 +1,76 @@
+#pragma once
+// Running the chain model (docs/mbd.md#numerics): settle, release, integrate
+// with CVODE BDF + KLU (default) or fixed-step RK4 (the seed's method), and
+// hand every output sample to the caller as it is made, so memory does not
+// grow with the run length.
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+#include "cvtplant/mbd/model.hpp"
+#include "cvtplant/mbd/params.hpp"
+
+namespace cvt::mbd {
+
+enum class Method { bdf, rk4 };
+
+struct RunOptions {
+  Method method = Method::bdf;
+  double t_end_s = 1.0;
+  double rtol = 5e-7;           // bdf: relative tolerance (docs/mbd.md#tolerances)
+  double dt_s = 1e-6;           // rk4: fixed step
+  double sample_s = 1e-3;       // output interval (rk4: rounded to a whole number of steps)
+  long long max_steps = 100000000;  // cap on integrator steps (work); exceeding it stops the run
+  double ledger_tol = 1e-6;     // the run stops when the energy ledger is off by more (relative)
+  double settle_rtol = 1e-8;    // the start-up settle, the same for every method and tolerance
+};
+
+// What the integrator did (RK4: steps and 4 right-hand sides per step).
+struct SolverCounters {
+  long long steps = 0, rhs_evals = 0, jac_evals = 0, linear_setups = 0, newton_iters = 0;
+  long long error_test_fails = 0, newton_fails = 0;
+};
+
+struct RunStats : SolverCounters {
+  long long samples = 0;
+  double wall_s = 0, settle_wall_s = 0;
+  // CPU time of the process over the run [s]: on a busy host, what the wall
+  // time would be on an idle core.
+  double cpu_s = 0;
+  double ledger_residual_max_rel = 0;  // max over samples of |ledger residual| / ledger scale
+  double energy0_J = 0;                // E_kin + E_el at the release
+  double ledger_floor_J = 0;           // smallest ledger scale (see ledger_scale_J)
+  int states = 0;
+  long long jacobian_nnz = 0;
+};
+
+
+// A run that went bad: the time and the quantity, for the user, and what the
+// run had done until then.
+struct RunFailure : std::runtime_error {
+  double t_s;
+  std::string quantity;
+  RunStats stats;
+  RunFailure(double t, const std::string& q);
+};
+
+// Called for every sample, the state vector alongside (for per-link output).
+using SampleSink = std::function<void(const Sample&, const ChainModel&, const double* y)>;
+// Called with the simulated time now and then (progress display).
+using ProgressSink = std::function<void(double t_s)>;
+
+// Ledger residual of a sample: (E - E0) - (W_in - W_load - D_fric - D_damp + W_clamp),
+// and the scale it is measured against: the largest term of the balance, but
+// not less than floor_J (ChainModel::tolerance_energy_J(): below that the
+// integrator's absolute tolerances, not its accuracy, set the residual).
+// docs/mbd.md#energy-ledger
+double ledger_residual_J(const Sample& s, double energy0_J);
+double ledger_scale_J(const Sample& s, double energy0_J, double floor_J);
+
+// Runs params for opt.t_end_s after the settle. Throws RunFailure if the
+// integrator fails, a state goes bad or the ledger does not close;
+// std::invalid_argument for options out of range.
+RunStats simulate(const MbdParams& params, const RunOptions& opt, const SampleSink& on_sample,
+                  const ProgressSink& on_progress = {});
+
+}  // namespace cvt::mbd

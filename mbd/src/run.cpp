@@ -1,0 +1,130 @@
+// Settle, release, integrate, sample (docs/mbd.md#numerics).
+#include "cvtplant/mbd/run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <ctime>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "integrators.hpp"
+
+namespace cvt::mbd {
+
+namespace {
+
+constexpr long long kSettleStepCap = 1000000;
+
+std::string format_time(double t) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6g", t);
+  return buf;
+}
+
+}  // namespace
+
+RunFailure::RunFailure(double t, const std::string& q)
+    : std::runtime_error("at t = " + format_time(t) + " s: " + q), t_s(t), quantity(q) {}
+
+// docs/mbd.md#energy-ledger
+double ledger_residual_J(const Sample& s, double energy0_J) {
+  const double stored = s.E_kin_J + s.E_el_J - energy0_J;
+  const double flows = s.W_in_J - s.W_load_J - s.D_friction_J - s.D_damping_J + s.W_clamp_J;
+  return stored - flows;
+}
+
+double ledger_scale_J(const Sample& s, double energy0_J, double floor_J) {
+  return std::max({floor_J, std::fabs(energy0_J), std::fabs(s.E_kin_J + s.E_el_J), std::fabs(s.W_in_J), std::fabs(s.W_load_J),
+                   std::fabs(s.D_friction_J), std::fabs(s.D_damping_J), std::fabs(s.W_clamp_J)});
+}
+
+RunStats simulate(const MbdParams& params, const RunOptions& opt, const SampleSink& on_sample,
+                  const ProgressSink& on_progress) {
+  if (!(opt.t_end_s > 0) || !std::isfinite(opt.t_end_s)) throw std::invalid_argument("t_end must be > 0");
+  if (!(opt.sample_s > 0) || !std::isfinite(opt.sample_s)) throw std::invalid_argument("sample interval must be > 0");
+  if (opt.method == Method::bdf && !(opt.rtol > 0 && opt.rtol < 1)) throw std::invalid_argument("rtol in (0, 1)");
+  if (opt.method == Method::rk4 && !(opt.dt_s > 0)) throw std::invalid_argument("dt must be > 0");
+  if (opt.method == Method::rk4 && std::llround(opt.t_end_s / opt.dt_s) > opt.max_steps)
+    throw std::invalid_argument("t_end / dt = " + std::to_string(std::llround(opt.t_end_s / opt.dt_s)) +
+                                " steps exceeds the step cap");
+  ChainModel model(params);
+  RunStats stats;
+  stats.states = model.size();
+  stats.jacobian_nnz = model.pattern().nnz();
+  std::vector<double> y = model.initial_state();
+
+  using clock = std::chrono::steady_clock;
+  const auto t_start = clock::now();
+  const std::clock_t cpu_start = std::clock();
+  const auto cpu_seconds = [&] { return static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC; };
+  // docs/mbd.md#start-up: the same settle for every method and tolerance, so
+  // all runs of a case start from the same released state.
+  if (params.settle_s > 0) {
+    model.set_phase(ChainModel::Phase::settle);
+    // The settle is fixed work (a few thousand steps), outside the user's cap.
+    auto settle = detail::make_bdf(model, -params.settle_s, y.data(), opt.settle_rtol, kSettleStepCap);
+    settle->advance_to(0.0, y.data());
+    const std::string bad = model.state_problem(y.data());
+    if (!bad.empty()) throw RunFailure(0.0, "settling: " + bad);
+  }
+  const auto t_released = clock::now();
+  stats.settle_wall_s = std::chrono::duration<double>(t_released - t_start).count();
+  model.set_phase(ChainModel::Phase::run);
+  if (params.hold1.active) y[static_cast<std::size_t>(model.pulley_speed(0))] = params.hold1.omega_rad_s;
+  if (params.hold2.active) y[static_cast<std::size_t>(model.pulley_speed(1))] = params.hold2.omega_rad_s;
+  model.reset_ledger(y.data());
+  stats.energy0_J = model.energy_J(y.data());
+  const double floor_J = model.tolerance_energy_J();
+  stats.ledger_floor_J = floor_J;
+
+  double sample_s = opt.sample_s;
+  long long samples_after_0 = 0;
+  std::unique_ptr<detail::Integrator> integ;
+  if (opt.method == Method::rk4) {
+    // Samples fall on steps.
+    const long long per = std::max<long long>(1, std::llround(opt.sample_s / opt.dt_s));
+    sample_s = static_cast<double>(per) * opt.dt_s;
+    integ = detail::make_rk4(model, 0.0, y.data(), opt.dt_s, opt.max_steps);
+  } else {
+    integ = detail::make_bdf(model, 0.0, y.data(), opt.rtol, opt.max_steps);
+  }
+  samples_after_0 = static_cast<long long>(std::ceil(opt.t_end_s / sample_s - 1e-9));
+
+  auto emit = [&](double t) {
+    const std::string bad = model.state_problem(y.data());
+    if (!bad.empty()) throw RunFailure(t, bad);
+    const Sample s = model.sample(t, y.data());
+    const double res = std::fabs(ledger_residual_J(s, stats.energy0_J)) / ledger_scale_J(s, stats.energy0_J, floor_J);
+    if (!std::isfinite(res)) throw RunFailure(t, "energy ledger is not finite");
+    stats.ledger_residual_max_rel = std::max(stats.ledger_residual_max_rel, res);
+    if (res > opt.ledger_tol) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "energy ledger residual %.3g (relative) exceeds %.3g", res, opt.ledger_tol);
+      throw RunFailure(t, buf);
+    }
+    ++stats.samples;
+    if (on_sample) on_sample(s, model, y.data());
+    if (on_progress) on_progress(t);
+  };
+  try {
+    emit(0.0);
+    for (long long k = 1; k <= samples_after_0; ++k) {
+      const double t = std::min(opt.t_end_s, static_cast<double>(k) * sample_s);
+      integ->advance_to(t, y.data());
+      emit(t);
+    }
+  } catch (RunFailure& e) {
+    static_cast<SolverCounters&>(stats) = integ->counters();
+    stats.wall_s = std::chrono::duration<double>(clock::now() - t_start).count();
+    stats.cpu_s = cpu_seconds();
+    e.stats = stats;
+    throw;
+  }
+  static_cast<SolverCounters&>(stats) = integ->counters();
+  stats.wall_s = std::chrono::duration<double>(clock::now() - t_start).count();
+  stats.cpu_s = cpu_seconds();
+  return stats;
+}
+
+}  // namespace cvt::mbd

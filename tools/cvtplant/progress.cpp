@@ -1,0 +1,58 @@
+#include "progress.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace cvtcli {
+
+namespace {
+
+std::string seconds(double s) {
+  char buf[32];
+  if (s < 60) std::snprintf(buf, sizeof buf, "%.1f s", s);
+  else if (s < 3600) std::snprintf(buf, sizeof buf, "%dm%02ds", static_cast<int>(s) / 60, static_cast<int>(s) % 60);
+  else std::snprintf(buf, sizeof buf, "%dh%02dm", static_cast<int>(s) / 3600, (static_cast<int>(s) % 3600) / 60);
+  return buf;
+}
+
+}  // namespace
+
+Progress::Progress(std::string label, double total, std::FILE* out)
+    : label_(std::move(label)), total_(total), out_(out), enabled_(isatty(fileno(out)) == 1 && total > 0),
+      start_(clock::now()), last_(start_) {}
+
+Progress::~Progress() { finish(); }
+
+std::string Progress::format(const std::string& label, double done, double total, double wall_s, int width) {
+  const double f = total > 0 ? std::clamp(done / total, 0.0, 1.0) : 0.0;
+  const int filled = static_cast<int>(std::floor(f * width));
+  std::string bar(static_cast<std::size_t>(filled), '#');
+  bar.append(static_cast<std::size_t>(width - filled), '.');
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%s [%s] %3.0f%%  t %.3g/%.3g s  wall %s  left %s", label.c_str(), bar.c_str(),
+                100.0 * f, done, total, seconds(wall_s).c_str(),
+                f > 0 ? seconds(wall_s * (1.0 - f) / f).c_str() : "?");
+  return buf;
+}
+
+void Progress::update(double done) {
+  if (!enabled_) return;
+  const auto now = clock::now();
+  if (drawn_ && now - last_ < std::chrono::milliseconds(100)) return;
+  last_ = now;
+  drawn_ = true;
+  const double wall = std::chrono::duration<double>(now - start_).count();
+  std::fprintf(out_, "\r%s\033[K", format(label_, done, total_, wall).c_str());
+  std::fflush(out_);
+}
+
+void Progress::finish() {
+  if (!enabled_ || !drawn_) return;
+  std::fprintf(out_, "\r\033[K");
+  std::fflush(out_);
+  drawn_ = false;
+}
+
+}  // namespace cvtcli
