@@ -87,3 +87,39 @@ TEST_CASE("ratio law: without fresh data the integral and the slip extra are hel
   CHECK(std::isfinite(held.driver_clamp_cmd_N));
   CHECK(held.driver_clamp_cmd_N > 0.0f);
 }
+
+TEST_CASE("ratio law: a new set-point is followed at the bounded shift speed with the feed-forward of that speed") {
+  const cvtctl::RatioLawParams p;
+  const cvtctl::ThrustMap map;
+  cvtctl::RatioLaw law(p);
+  // The first set-point is taken as it is (no shift history after a reset).
+  CHECK(law.step(at(1.5f, 1.5f, 0.0762f, 60.0f)).ratio_reference == 1.5f);
+  // Set-point 2.5: the reference moves shift_rate_max * period per period.
+  // The chain lags 0.02 behind the reference all the way.
+  const float dref = p.shift_rate_max * p.period_s;
+  const int n_full = static_cast<int>((2.5f - 1.5f) / dref);  // whole steps; the last one is shorter
+  float ref = 1.5f;
+  for (int i = 1; i < n_full; ++i) {
+    const cvtctl::RatioLawOutputs o = law.step(at(ref + dref - 0.02f, 2.5f, 0.0762f, 60.0f));
+    CHECK(o.ratio_reference == doctest::Approx(1.5f + dref * static_cast<float>(i)).epsilon(1e-5));
+    ref = o.ratio_reference;
+    // Map at the reference, the feed-forward asking for the reference's
+    // speed (a lower thrust ratio shifts toward low), the proportional part;
+    // the integral stays at zero while the reference moves.
+    const float expect = map.at(ref) - p.shift_rate_max / p.shift_gain_per_s + p.kp * -0.02f;
+    CHECK(o.thrust_ratio == doctest::Approx(expect).epsilon(1e-4));
+  }
+  // The last steps (the last one shorter) with the chain on the set-point:
+  // the integral stays 0 (it runs only at rest, and there the error is 0).
+  float last_ref = 0.0f;
+  for (int i = 0; i < 3; ++i) last_ref = law.step(at(2.5f, 2.5f, 0.0762f, 60.0f)).ratio_reference;
+  CHECK(last_ref == 2.5f);
+  // At rest on the set-point: no feed-forward, the integral starts.
+  const cvtctl::RatioLawOutputs rest = law.step(at(2.4f, 2.5f, 0.0762f, 60.0f));
+  CHECK(rest.ratio_reference == 2.5f);
+  CHECK(rest.thrust_ratio ==
+        doctest::Approx(map.at(2.5f) + p.kp * -0.1f + p.ki * -0.1f * p.period_s).epsilon(1e-4));
+  // The shift speed the reference asks for stays below the chain's radial
+  // breakaway: feed-forward within the correction bound.
+  CHECK(p.shift_rate_max / p.shift_gain_per_s < p.correction_max);
+}

@@ -11,10 +11,19 @@
 //   on the driver (upshift, the ratio falls), a smaller one pulls it in.
 //   The belt carries tau_cap = 2 mu0 F1 r1 / cos(beta) on the driver, whose
 //   running radius r1 now varies with the ratio.
-// Law per 10 ms period, e = ratio - ratio_target:
+// The set-point is followed through a reference that moves at most
+// shift_rate_max: a faster shift swings the engine and wheel inertias
+// against each other through the chain (the transmitted torque reverses and
+// the strands ring), which the slip signal shows as a stretch rate beyond the
+// slip protection's limit.
+// Law per 10 ms period, ref = rate-limited set-point, e = ratio - ref:
 //   F1 = safety * tau_ref cos(beta) / (2 mu0 r1) + slip extra    (clamping level)
-//   k  = kappa_map(ratio_target) + kp e + ki sum(e dt)            (thrust ratio)
+//   k  = kappa_map(ref) - (d ref/dt) / g + kp e + ki sum(e dt)    (thrust ratio)
 //   F2 = F1 / k                                                   (balance)
+// g is the chain's shift speed per unit of thrust-ratio imbalance, so the
+// feed-forward term asks for the reference's speed; the integral runs only
+// while the reference rests, so a ramp's lag does not wind it up into an
+// overshoot at the end of the shift.
 #pragma once
 
 #include "cvtctl/clamp_law.hpp"
@@ -52,6 +61,8 @@ struct RatioLawParams {
   // (docs/sil.md#ratio-control).
   float correction_max = 0.20f;
   float thrust_min = 0.60f, thrust_max = 1.40f;
+  float shift_rate_max = 0.6f;   // ratio per second the reference may move
+  float shift_gain_per_s = 3.5f; // g: ratio per second per unit of thrust-ratio imbalance
   float period_s = 0.01f;
 };
 
@@ -70,6 +81,7 @@ struct RatioLawOutputs {
   float driven_clamp_cmd_N = 0.0f;   // CtrlShiftCmd.driven_clamp_force_cmd_N
   float driver_torque_req_Nm = 0.0f;
   float thrust_ratio = 1.0f;
+  float ratio_reference = 1.5f;      // the rate-limited set-point the law tracks
 };
 
 class RatioLaw {
@@ -82,21 +94,31 @@ class RatioLaw {
     const ClampLawParams& c = p_.clamp;
     const float a = abs_f(in.torque_demand_Nm);
     float tau_ref = a, r1 = last_r1_m_, err = 0.0f;
+    // The reference starts at the first set-point and then moves toward
+    // the set-point at the bounded shift speed, with or without fresh data.
+    const float dmax = p_.shift_rate_max * p_.period_s;
+    const float step = have_ref_ ? clamp_f(in.ratio_target - ref_, -dmax, dmax) : 0.0f;
+    ref_ = have_ref_ ? ref_ + step : in.ratio_target;
+    have_ref_ = true;
+    const bool ref_at_rest = ref_ == in.ratio_target;
+    out.ratio_reference = ref_;
     if (in.plant_data_valid) {
       extra_N_ = slip_extra_next_N(c, extra_N_, in.slip);
       const float b = abs_f(in.torque_transmitted_Nm);
       tau_ref = a > b ? a : b;
       r1 = clamp_f(in.radius_driver_m, 0.02f, 0.2f);
       last_r1_m_ = r1;
-      err = in.geometric_ratio - in.ratio_target;
-      integral_ = clamp_f(integral_ + p_.ki * err * p_.period_s, -p_.integral_max, p_.integral_max);
+      err = in.geometric_ratio - ref_;
+      if (ref_at_rest)
+        integral_ = clamp_f(integral_ + p_.ki * err * p_.period_s, -p_.integral_max, p_.integral_max);
     }
     // Without fresh data: the clamping for the demand at the last known
     // radius, the thrust ratio from the map and the held integral.
     const float level = c.safety * clamp_for_torque_at_N(c, tau_ref, r1);
     const float f1 = clamp_f(level + extra_N_, c.clamp_min_N, c.clamp_max_N);
-    const float corr = clamp_f(p_.kp * err + integral_, -p_.correction_max, p_.correction_max);
-    const float k = clamp_f(p_.map.at(in.ratio_target) + corr, p_.thrust_min, p_.thrust_max);
+    const float feed = -step / (p_.period_s * p_.shift_gain_per_s);
+    const float corr = clamp_f(feed + p_.kp * err + integral_, -p_.correction_max, p_.correction_max);
+    const float k = clamp_f(p_.map.at(ref_) + corr, p_.thrust_min, p_.thrust_max);
     out.thrust_ratio = k;
     out.driver_clamp_cmd_N = f1;
     out.driven_clamp_cmd_N = clamp_f(f1 / k, c.clamp_min_N, c.clamp_max_N);
@@ -107,13 +129,16 @@ class RatioLaw {
     extra_N_ = 0.0f;
     integral_ = 0.0f;
     last_r1_m_ = 0.0762f;
+    ref_ = 1.5f;
+    have_ref_ = false;
   }
   float extra_N() const { return extra_N_; }
   const RatioLawParams& params() const { return p_; }
 
  private:
   RatioLawParams p_;
-  float extra_N_ = 0.0f, integral_ = 0.0f, last_r1_m_ = 0.0762f;
+  float extra_N_ = 0.0f, integral_ = 0.0f, last_r1_m_ = 0.0762f, ref_ = 1.5f;
+  bool have_ref_ = false;
 };
 
 }  // namespace cvtctl
