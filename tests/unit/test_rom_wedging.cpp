@@ -262,6 +262,20 @@ TEST_CASE("wedging: the end stop is resolved by finer steps only while the chain
   two.substeps = 2;
   const RunEnd everywhere = run<double>(s, two);
   CHECK(everywhere.residual_rel < 1e-5);
+  // The other way, a stop law one step resolves: 1e6 N/m rings at 8.9 ms.
+  // It closes the ledger but lets the chain well past the travel, a change
+  // of the geometry at the ratio limits (docs/rom.md#end-stop).
+  cvt::Scene soft = s;
+  soft.params.radial_stop_N_m = 1e6;
+  const RunEnd softer = run<double>(soft, plain);
+  CHECK(softer.fault == cvt::RomFault::none);
+  CHECK(softer.residual_rel < 1e-5);
+  CHECK(softer.max_pen_m > 1e-3);
+  CHECK(refined.max_pen_m < 0.5e-3);
+  MESSAGE("ledger residual / flows on clamp-step with wedging (chain on the hub stop): one step per frame ",
+          one.residual_rel, ", 2 substeps near the stop ", refined.residual_rel, ", 2 substeps everywhere ",
+          everywhere.residual_rel, "; 1e6 N/m stop at one step ", softer.residual_rel, ", deepest ",
+          softer.max_pen_m * 1e3, " mm past the travel (1e7 N/m refined: ", refined.max_pen_m * 1e3, " mm)");
   // Only frames on the stop pay: before the clamp drop at 1 s none are.
   cvt::RomSimulator<double, kWedgeRoad> sim(s.params, def);
   sim.reset(s.initial, cvt::scene_inputs_at<double>(s, 0.0));
