@@ -123,3 +123,21 @@ TEST_CASE("ratio law: a new set-point is followed at the bounded shift speed wit
   // breakaway: feed-forward within the correction bound.
   CHECK(p.shift_rate_max / p.shift_gain_per_s < p.correction_max);
 }
+
+TEST_CASE("ratio law: on an end stop the integral rests, so a set-point beyond the travel does not wind it up") {
+  const cvtctl::RatioLawParams p;
+  const cvtctl::ThrustMap map;
+  cvtctl::RatioLaw law(p);
+  // Set-point 2.9 beyond the underdrive stop, the chain held on it at 2.65.
+  cvtctl::RatioLawInputs in = at(2.65f, 2.9f, 0.0512f, 60.0f);
+  in.on_end_stop = true;
+  cvtctl::RatioLawOutputs o{};
+  for (int i = 0; i < 500; ++i) o = law.step(in);
+  // Proportional part only: the chain is pushed onto the stop, nothing stored.
+  CHECK(o.thrust_ratio == doctest::Approx(map.at(2.9f) + p.kp * (2.65f - 2.9f)).epsilon(1e-5));
+  // Off the stop the integral starts from zero.
+  in.on_end_stop = false;
+  o = law.step(in);
+  CHECK(o.thrust_ratio ==
+        doctest::Approx(map.at(2.9f) + p.kp * -0.25f + p.ki * -0.25f * p.period_s).epsilon(1e-5));
+}

@@ -93,6 +93,7 @@ class ControllerNode {
       in.slip = ratio_.slip;
       in.geometric_ratio = ratio_.geometric_ratio;
       in.radius_driver_m = shift_.radius_driver_m;
+      in.on_end_stop = shift_.end_stop_underdrive || shift_.end_stop_overdrive;
       last_used_tag_ = speeds_.sample_tag;
       ++counters_.fresh_periods;
     } else {

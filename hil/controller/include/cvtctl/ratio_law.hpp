@@ -23,7 +23,9 @@
 // g is the chain's shift speed per unit of thrust-ratio imbalance, so the
 // feed-forward term asks for the reference's speed; the integral runs only
 // while the reference rests, so a ramp's lag does not wind it up into an
-// overshoot at the end of the shift.
+// overshoot at the end of the shift, and not while the chain is on an end
+// stop, where a set-point beyond the travel would wind it up against the
+// stop and hold the chain short of the other stop afterwards.
 #pragma once
 
 #include "cvtctl/clamp_law.hpp"
@@ -73,6 +75,7 @@ struct RatioLawInputs {
   float slip = 0.0f;                     // PlantRatio
   float geometric_ratio = 1.5f;          // PlantRatio
   float radius_driver_m = 0.0762f;       // PlantShift
+  bool on_end_stop = false;              // PlantShift: either end-stop flag
   bool plant_data_valid = false;
 };
 
@@ -109,7 +112,7 @@ class RatioLaw {
       r1 = clamp_f(in.radius_driver_m, 0.02f, 0.2f);
       last_r1_m_ = r1;
       err = in.geometric_ratio - ref_;
-      if (ref_at_rest)
+      if (ref_at_rest && !in.on_end_stop)
         integral_ = clamp_f(integral_ + p_.ki * err * p_.period_s, -p_.integral_max, p_.integral_max);
     }
     // Without fresh data: the clamping for the demand at the last known

@@ -4,6 +4,7 @@
 // storage this object owns, without the heap.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
 #include "cvtplant/scene/all_plants.hpp"
@@ -50,6 +51,12 @@ class ScenePlant {
   }
   double driven_clamp_N() const { return loaded() ? sim_.sim().driven_clamp_N() : 0.0; }
   long stop_refined_frames() const { return loaded() ? sim_.sim().stop_refined_frames() : 0; }
+  // The energy ledger's residual over its flows (docs/rom.md#energy-balance).
+  double energy_residual_rel() const {
+    if (!loaded()) return 0.0;
+    const auto& e = sim_.sim().energy();
+    return e.scale_J() > 0.0 ? std::fabs(e.residual_J()) / e.scale_J() : 0.0;
+  }
   bool variable_ratio() const { return loaded() && (scene_->features & rom_feature::wedging) != 0; }
 
   bool loaded() const { return scene_ != nullptr; }
