@@ -30,6 +30,11 @@ expect 2 "$SIL" fly
 expect 2 "$SIL" run --scenario nope
 expect 2 "$SIL" run --safety x
 expect 2 "$SIL" run --reply-timeout-ms 0
+expect 2 "$SIL" run --mode fast
+expect 2 "$SIL" run --loopback --mode realtime --scenario tip-in
+expect 2 "$SIL" run --loopback --mode realtime --loopback-frame-cost-us -1
+expect 2 "$SIL" run --mode realtime --loopback-frame-cost-us 1500
+expect 2 "$SIL" run --loopback --loopback-frame-cost-us 1500
 expect 2 "$SIL" bench --steps 0
 expect 1 "$SIL" run --iface nosuchcan0
 # An output directory that cannot be made is an error, not missing traces.
