@@ -2,7 +2,8 @@
 // on the bus, each with its own socket: the Harness (SimCtrl lock-step
 // requests, HarnessLoad) and the example Controller (hil/controller). For
 // each scenario it resets the bridge, runs the closed loop in 10 ms
-// lock-step periods, checks the pass/fail criteria and writes a CSV trace;
+// lock-step periods (the ratio scenarios also in real time, the bridge
+// pacing the plant), checks the pass/fail criteria and writes a CSV trace;
 // all results go to one JUnit XML file. `bench` measures lock-step round
 // trips per second.
 #include <cerrno>
@@ -15,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "cvtctl/control_schedule.hpp"
 #include "cvtctl/controller_node.hpp"
 #include "cvtplant/can/messages.hpp"
 #include "cvtplant/port/loopback_transport.hpp"
@@ -36,13 +38,22 @@ constexpr std::int64_t kReplyTimeout_ns = 10000000000;
 
 const char kUsage[] =
     "usage: cvtplant-sil run   [--iface NAME|--loopback] [--scenario NAME|all] [--out DIR] [--junit FILE] [--safety X]\n"
-    "                          [--reply-timeout-ms T]\n"
+    "                          [--reply-timeout-ms T] [--mode lockstep|realtime|both]\n"
+    "                          [--loopback-frame-cost-us US]\n"
     "       cvtplant-sil bench [--iface NAME|--loopback] [--steps N] [--with-controller] [--reply-timeout-ms T]\n"
-    "Drives cvtplant-bridge (lock-step) with the example controller over SocketCAN.\n"
+    "Drives cvtplant-bridge with the example controller over SocketCAN.\n"
     "  --iface NAME        interface (default vcan0)\n"
     "  --loopback          no SocketCAN: the bridge runs in-process on the loopback bus\n"
-    "  --scenario NAME     tip-in, load-step, clamp-loss, lost-frames, frozen-controller,\n"
-    "                      controller-restart, controller-flood or all (default all)\n"
+    "  --scenario NAME     ratio-sweep, kick-down, slip-recovery, tip-in, load-step, clamp-loss,\n"
+    "                      lost-frames, frozen-controller, controller-restart, controller-flood\n"
+    "                      or all (default all)\n"
+    "  --mode M            lockstep (default): the harness steps the plant; realtime: the ratio\n"
+    "                      scenarios with the bridge pacing the plant at 1 kHz (on the wall clock;\n"
+    "                      with --loopback on a virtual clock); both: each scenario in lock-step,\n"
+    "                      a ratio scenario then again in real time. A real-time run whose plant\n"
+    "                      overran more than 10 % of its frames reports the motion criteria as skipped\n"
+    "  --loopback-frame-cost-us US  real time on the loopback bus: each plant frame's work takes US us\n"
+    "                      of virtual time (default 0; above 1000 the plant cannot keep time)\n"
     "  --reply-timeout-ms T  send a request again when its answer is not complete after T ms\n"
     "                      (default 1000; 20 with --loopback, whose answers are immediate)\n"
     "  --out DIR           per-scenario CSV traces (default .)\n"
@@ -73,6 +84,10 @@ class FaultInjector final : public cvt::port::CanTransport {
   void lose_next_sent(std::uint32_t id) { lose_tx_ = static_cast<std::int64_t>(id); }
   void lose_next_received(std::uint32_t id) { lose_rx_ = static_cast<std::int64_t>(id); }
   void freeze(bool on) { frozen_ = on && have_last_; }
+  // Scales both clamping commands on the wire (CtrlCmd, CtrlShiftCmd) by
+  // `s`, counter kept and CRC recomputed: the actuators' supply pressure
+  // dropping to a fraction, which the controller sees only as slip.
+  void scale_clamp(float s) { clamp_scale_ = s; }
   std::uint32_t lost() const { return lost_; }
 
   CanIoStatus send(const CanFrame& f) noexcept override {
@@ -84,6 +99,16 @@ class FaultInjector final : public cvt::port::CanTransport {
     if (frozen_) return inner_.send(last_);
     last_ = f;
     have_last_ = true;
+    if (clamp_scale_ != 1.0f && f.dlc == 8 && (f.id == cvt::can::CtrlCmd::kId || f.id == cvt::can::CtrlShiftCmd::kId)) {
+      CanFrame g = f;
+      if (f.id == cvt::can::CtrlCmd::kId) rescale<cvt::can::CtrlCmd>(g, [this](cvt::can::CtrlCmd& m) {
+          m.clamp_force_cmd_N *= clamp_scale_;
+        });
+      else rescale<cvt::can::CtrlShiftCmd>(g, [this](cvt::can::CtrlShiftCmd& m) {
+          m.driven_clamp_force_cmd_N *= clamp_scale_;
+        });
+      return inner_.send(g);
+    }
     return inner_.send(f);
   }
   CanIoStatus receive(CanFrame& out, std::int64_t timeout_ns) noexcept override {
@@ -99,7 +124,20 @@ class FaultInjector final : public cvt::port::CanTransport {
   cvt::port::CanBusState bus_state() const noexcept override { return inner_.bus_state(); }
 
  private:
+  template <class Msg, class Edit>
+  static void rescale(CanFrame& g, Edit edit) {
+    Msg m;
+    if (cvt::can::unpack(g.data, m) != cvt::can::CodecStatus::Ok) return;
+    edit(m);
+    std::uint8_t q[8];
+    if (cvt::can::pack(m, q) != cvt::can::CodecStatus::Ok) return;
+    q[1] = static_cast<std::uint8_t>((q[1] & 0xF0u) | (g.data[1] & 0x0Fu));
+    q[0] = cvt::can::e2e_crc(Msg::kE2eDataId, q);
+    std::memcpy(g.data, q, 8);
+  }
+
   cvt::port::CanTransport& inner_;
+  float clamp_scale_ = 1.0f;
   std::int64_t lose_tx_ = -1, lose_rx_ = -1;
   bool frozen_ = false, have_last_ = false;
   CanFrame last_{};
@@ -166,6 +204,36 @@ class Harness {
     return false;
   }
 
+  // Real time (docs/sil.md#ratio-realtime): SimCtrl RunRealTime, which the
+  // bridge does not answer; it paces its frames from then on.
+  bool start_realtime() {
+    cvt::can::SimCtrl m;
+    m.sim_request = cvt::can::SimRequest::RunRealTime;
+    m.step_seq = seq_;
+    seq_ = static_cast<std::uint8_t>((seq_ + 1) & 0x0F);
+    CanFrame f;
+    if (sim_.encode(m, f) != cvt::can::CodecStatus::Ok || bus_.send(f) != CanIoStatus::Ok) return false;
+    if (on_idle_) on_idle_();
+    return true;
+  }
+
+  // Back to Ready with the closing diagnostics. A real-time PlantStatus
+  // acknowledges step_seq 0, so the Pause never uses 0: the answer cannot
+  // be mistaken for a cyclic status still on its way (skipping a value is
+  // not a repeat for the bridge).
+  bool pause() {
+    if (seq_ == 0) seq_ = 1;
+    return request(cvt::can::SimRequest::Pause, 0, cvt::can::SceneId::Keep);
+  }
+
+  // Reads every frame already queued (a real-time run's cyclic frames).
+  void drain() {
+    CanFrame f;
+    for (CanIoStatus st = bus_.receive(f, 0); st != CanIoStatus::Timeout; st = bus_.receive(f, 0))
+      if (st == CanIoStatus::Ok) take(f);
+  }
+  std::uint32_t realtime_statuses() const { return realtime_statuses_; }
+
   bool send_load(bool active, float torque_Nm) {
     cvt::can::HarnessLoad m;
     m.load_override_active = active;
@@ -176,6 +244,9 @@ class Harness {
 
   const cvt::can::PlantStatus& status() const { return status_; }
   const cvt::can::PlantForces& forces() const { return forces_; }
+  const cvt::can::PlantShift& shift() const { return shift_; }
+  // A variable-ratio scene's groups also carry PlantShift (docs/can.md#layout).
+  void expect_shift(bool on) { expect_shift_ = on; }
   const cvt::can::PlantSpeeds& speeds() const { return speeds_; }
   const cvt::can::PlantRatio& ratio() const { return ratio_; }
   const cvt::can::PlantDiag& diag() const { return diag_; }
@@ -204,30 +275,39 @@ class Harness {
       CanFrame f;
       const CanIoStatus st = bus_.receive(f, on_idle_ ? 0 : left);
       if (st == CanIoStatus::Timeout && on_idle_) on_idle_();
-      if (st != CanIoStatus::Ok) continue;
-      if (f.id < cvt::can::PlantSpeeds::kId) continue;  // SimCtrl/CtrlCmd/HarnessLoad from other nodes
-      cvt::can::AnyMessage a;
-      if (!rx_.receive(f, a).accepted()) {
-        ++rejected_;
-        continue;
-      }
-      switch (a.which) {
-        case cvt::can::MessageId::PlantSpeeds: speeds_ = a.plant_speeds; break;
-        case cvt::can::MessageId::PlantRatio: ratio_ = a.plant_ratio; break;
-        case cvt::can::MessageId::PlantForces: forces_ = a.plant_forces; break;
-        case cvt::can::MessageId::PlantDiag: diag_ = a.plant_diag; break;
-        case cvt::can::MessageId::PlantBusDiag: bus_diag_ = a.plant_bus_diag; break;
-        case cvt::can::MessageId::PlantCmdDiag: cmd_diag_ = a.plant_cmd_diag; break;
-        case cvt::can::MessageId::PlantStatus:
-          status_ = a.plant_status;
-          if (status_.step_seq_ack != seq) continue;
-          if (speeds_.sample_tag != status_.sample_tag || ratio_.sample_tag != status_.sample_tag ||
-              forces_.sample_tag != status_.sample_tag)
-            return Reply::Partial;
-          return Reply::Complete;
-        default: break;
-      }
+      if (st != CanIoStatus::Ok || !take(f)) continue;
+      if (status_.step_seq_ack != seq) continue;
+      if (speeds_.sample_tag != status_.sample_tag || ratio_.sample_tag != status_.sample_tag ||
+          forces_.sample_tag != status_.sample_tag || (expect_shift_ && shift_.sample_tag != status_.sample_tag))
+        return Reply::Partial;
+      return Reply::Complete;
     }
+  }
+
+  // One received frame through the E2E receive pipeline into the latest
+  // plant state; true when it was an accepted PlantStatus.
+  bool take(const CanFrame& f) {
+    if (f.id < cvt::can::PlantSpeeds::kId) return false;  // SimCtrl/CtrlCmd/HarnessLoad from other nodes
+    cvt::can::AnyMessage a;
+    if (!rx_.receive(f, a).accepted()) {
+      ++rejected_;
+      return false;
+    }
+    switch (a.which) {
+      case cvt::can::MessageId::PlantSpeeds: speeds_ = a.plant_speeds; break;
+      case cvt::can::MessageId::PlantRatio: ratio_ = a.plant_ratio; break;
+      case cvt::can::MessageId::PlantForces: forces_ = a.plant_forces; break;
+      case cvt::can::MessageId::PlantShift: shift_ = a.plant_shift; break;
+      case cvt::can::MessageId::PlantDiag: diag_ = a.plant_diag; break;
+      case cvt::can::MessageId::PlantBusDiag: bus_diag_ = a.plant_bus_diag; break;
+      case cvt::can::MessageId::PlantCmdDiag: cmd_diag_ = a.plant_cmd_diag; break;
+      case cvt::can::MessageId::PlantStatus:
+        status_ = a.plant_status;
+        if (status_.plant_mode == cvt::can::PlantMode::RealTime) ++realtime_statuses_;
+        break;
+      default: break;
+    }
+    return a.which == cvt::can::MessageId::PlantStatus;
   }
 
   cvt::port::CanTransport& bus_;
@@ -243,10 +323,13 @@ class Harness {
   cvt::can::PlantSpeeds speeds_{};
   cvt::can::PlantRatio ratio_{};
   cvt::can::PlantForces forces_{};
+  cvt::can::PlantShift shift_{};
+  bool expect_shift_ = false;
   cvt::can::PlantDiag diag_{};
   cvt::can::PlantBusDiag bus_diag_{};
   cvt::can::PlantCmdDiag cmd_diag_{};
   std::uint32_t rejected_ = 0, mixed_groups_ = 0, resends_ = 0, no_reply_ = 0, partial_groups_ = 0;
+  std::uint32_t realtime_statuses_ = 0;
 };
 
 // ---- Scenarios -------------------------------------------------------------
@@ -276,6 +359,16 @@ struct Scenario {
   std::function<float(double)> load_Nm = [](double) { return 0.0f; };
   double link_loss_start_s = -1, link_loss_end_s = -1;  // controller silent in [start, end)
   Faults faults{};
+  // Ratio control (docs/sil.md#ratio-scenarios): the variable-ratio scene,
+  // the controller's RatioLaw on this set-point; empty = the ClampLaw alone.
+  cvt::can::SceneId scene = cvt::can::SceneId::TipIn;
+  std::function<float(double)> ratio_target;
+  double track_bound = 0;       // |ratio - set-point| once the set-point has held for settle_s
+  double settle_s = 1.0;
+  double slip_bound = 0.10;     // max |slip| outside the clamping drop
+  double clamp_drop_start_s = -1, clamp_drop_end_s = -1;  // supply pressure at clamp_drop_factor
+  float clamp_drop_factor = 1.0f;
+  bool expect_end_stop = false;  // the sweep drives the chain onto the underdrive and overdrive stops
 };
 
 float ramp(double t, double t0, double t1, float a, float b) {
@@ -284,8 +377,45 @@ float ramp(double t, double t0, double t1, float a, float b) {
   return a + (b - a) * static_cast<float>((t - t0) / (t1 - t0));
 }
 
+// docs/sil.md#ratio-scenarios: the three ratio-control scenarios on the
+// variable-ratio scene (ratio-control: wedging, 60 N m, road load).
+void add_ratio_scenarios(std::vector<Scenario>& v) {
+  Scenario sw{"ratio-sweep",
+              "60 N m; set-point 1.5 -> 2.3 (low) -> 1.0 (overdrive) -> 1.5 in ramps, then beyond both end stops", 0,
+              [](double) { return 60.0f; }};
+  sw.scene = cvt::can::SceneId::RatioControl;
+  sw.ratio_target = [](double t) {
+    if (t < 4.0) return ramp(t, 0.5, 2.5, 1.5f, 2.3f);
+    if (t < 9.0) return ramp(t, 4.0, 7.0, 2.3f, 1.0f);
+    if (t < 12.0) return ramp(t, 9.0, 10.0, 1.0f, 1.5f);
+    if (t < 14.0) return 2.9f;  // beyond the underdrive stop (2.65)
+    return 0.8f;                // beyond the overdrive stop (0.89)
+  };
+  sw.t_end_s = 17.5;
+  sw.track_bound = 0.05;
+  sw.expect_end_stop = true;
+  v.push_back(sw);
+  Scenario kd{"kick-down", "ratio 1.0 at 40 N m; at 2 s tip-in to 120 N m over 0.2 s and set-point 1.0 -> 2.0", 5.5,
+              [](double t) { return ramp(t, 2.0, 2.2, 40.0f, 120.0f); }};
+  kd.scene = cvt::can::SceneId::RatioControl;
+  kd.ratio_target = [](double t) { return t < 0.5 ? 1.5f : (t < 2.0 ? 1.0f : 2.0f); };
+  kd.track_bound = 0.05;
+  kd.settle_s = 2.0;
+  v.push_back(kd);
+  Scenario sr{"slip-recovery", "ratio 1.5 at 100 N m; the clamping supply drops to 20 % for 500 ms at 1 s, then back",
+              3.5, [](double) { return 100.0f; }};
+  sr.scene = cvt::can::SceneId::RatioControl;
+  sr.ratio_target = [](double) { return 1.5f; };
+  sr.track_bound = 0.05;
+  sr.clamp_drop_start_s = 1.0;
+  sr.clamp_drop_end_s = 1.5;
+  sr.clamp_drop_factor = 0.2f;
+  v.push_back(sr);
+}
+
 std::vector<Scenario> scenarios() {
   std::vector<Scenario> v;
+  add_ratio_scenarios(v);
   v.push_back({"tip-in", "driver demand 20 -> 120 N m over 0.2 s at 1 s", 3.0,
                [](double t) { return ramp(t, 1.0, 1.2, 20.0f, 120.0f); }});
   Scenario ls{"load-step", "80 N m demand; harness load override 0 -> 100 N m at 1 s", 3.0,
@@ -335,12 +465,17 @@ struct Check {
   std::string name;
   bool pass;
   std::string detail;
+  // false: reported, not judged (a real-time run whose plant did not keep
+  // time, docs/sil.md#ratio-realtime); JUnit <skipped>, never a failure.
+  bool judged = true;
 };
 
 struct Sample {
   double t_s;
   float demand_Nm, clamp_cmd_N, axial_N, torque_Nm, slip, omega1, omega2, safety;
   bool cmd_timeout, watchdog;
+  float ratio_target, geometric_ratio, driven_cmd_N, driven_axial_N, radius1_m;
+  bool stop_under, stop_over;
 };
 
 struct ScenarioResult {
@@ -349,7 +484,7 @@ struct ScenarioResult {
   std::vector<Check> checks;
   bool pass() const {
     for (const Check& c : checks)
-      if (!c.pass) return false;
+      if (c.judged && !c.pass) return false;
     return true;
   }
 };
@@ -362,8 +497,150 @@ std::string fmt(const char* f, double a, double b = 0, double c = 0) {
 
 bool in_window(double t, double start, double end) { return start >= 0 && t >= start - 1e-9 && t < end - 1e-9; }
 
+// slip-recovery: the time after the supply is back within which the slip
+// must be small again; the common slip criteria skip the drop and this time.
+constexpr double kRecovery_s = 1.0;
+
 // Counter growth between two PlantDiag-family readings, modulo 2^16.
 double grew(std::uint16_t now, std::uint16_t then) { return static_cast<std::uint16_t>(now - then); }
+
+// docs/sil.md#ratio-scenarios: settled tracking, the slip excursion of a
+// clamping drop and its recovery, the end stops.
+void ratio_checks(const Scenario& sc, const std::vector<Sample>& trace, std::vector<Check>& c) {
+  double max_err = 0, max_err_t = 0, since = 0, sum_sq = 0;
+  float held = -1.0f;
+  int judged = 0;
+  bool under = false, over = false;
+  // Over the whole run (steps and ramps of the set-point included): the
+  // lag of the bounded shift speed, reported beside the settled figures.
+  double run_max = 0, run_sum_sq = 0;
+  int run_n = 0;
+  for (const Sample& s : trace) {
+    if (s.ratio_target != held) {
+      held = s.ratio_target;
+      since = s.t_s;
+    }
+    under = under || s.stop_under;
+    over = over || s.stop_over;
+    // Set-points beyond the stops cannot be reached: not tracking targets.
+    if (s.ratio_target > 2.65f || s.ratio_target < 0.89f) continue;
+    const double e = std::fabs(s.geometric_ratio - s.ratio_target);
+    run_max = std::fmax(run_max, e);
+    run_sum_sq += e * e;
+    ++run_n;
+    if (s.t_s - since < sc.settle_s - 1e-9) continue;
+    if (in_window(s.t_s, sc.clamp_drop_start_s, sc.clamp_drop_end_s + kRecovery_s)) continue;
+    ++judged;
+    sum_sq += e * e;
+    if (e > max_err) {
+      max_err = e;
+      max_err_t = s.t_s;
+    }
+  }
+  const double rms = judged > 0 ? std::sqrt(sum_sq / judged) : 0.0;
+  const double run_rms = run_n > 0 ? std::sqrt(run_sum_sq / run_n) : 0.0;
+  c.push_back({"ratio_tracked", judged > 0 && max_err <= sc.track_bound,
+               fmt("max |ratio - set-point| %.4f at t = %.2f s, ", max_err, max_err_t) +
+                   fmt("RMS %.4f over %.0f settled samples (limit ", rms, judged) +
+                   fmt("%.3f, set-point held >= %.1f s); ", sc.track_bound, sc.settle_s) +
+                   fmt("whole run max %.4f RMS %.4f", run_max, run_rms)});
+  if (sc.expect_end_stop) {
+    c.push_back({"end_stops_reached", under && over,
+                 fmt("PlantShift end_stop_underdrive seen %.0f, end_stop_overdrive seen %.0f", under, over)});
+  }
+  if (sc.clamp_drop_start_s >= 0) {
+    double peak = 0, recovered = -1;
+    for (const Sample& s : trace) {
+      if (in_window(s.t_s, sc.clamp_drop_start_s, sc.clamp_drop_end_s + kRecovery_s))
+        peak = std::fmax(peak, std::fabs(s.slip));
+      if (s.t_s >= sc.clamp_drop_end_s && recovered < 0 && std::fabs(s.slip) <= 0.02) recovered = s.t_s;
+    }
+    c.push_back({"slip_seen_in_drop", peak > 0.02,
+                 fmt("max |slip| %.4f in the drop and the %.1f s after it (the drop must be felt: > 0.02)", peak,
+                     kRecovery_s)});
+    c.push_back({"slip_bounded_in_drop", peak <= 0.30, fmt("max |slip| %.4f (limit 0.30)", peak)});
+    c.push_back({"slip_recovered", recovered >= 0 && recovered <= sc.clamp_drop_end_s + kRecovery_s,
+                 fmt("|slip| <= 0.02 again at %.2f s (supply back at %.2f s, limit + ", recovered,
+                     sc.clamp_drop_end_s) + fmt("%.1f s)", kRecovery_s)});
+  }
+}
+
+// Criteria on the motion (docs/sil.md#criteria), after the first 50 ms
+// start-up: slip, the ratio criteria, the torque-capacity safety factor.
+void motion_checks(const Scenario& sc, const std::vector<Sample>& trace, std::vector<Check>& c) {
+  double max_slip = 0, min_sf = 1e9, min_sf_t = 0;
+  for (const Sample& s : trace) {
+    if (s.t_s < 0.05) continue;
+    if (in_window(s.t_s, sc.clamp_drop_start_s, sc.clamp_drop_end_s + kRecovery_s)) continue;  // ratio_checks
+    max_slip = std::fmax(max_slip, std::fabs(s.slip));
+    if (s.safety < min_sf) {
+      min_sf = s.safety;
+      min_sf_t = s.t_s;
+    }
+  }
+  c.push_back({"slip_bounded", max_slip <= sc.slip_bound,
+               fmt("max |slip| %.4f (limit %.2f)", max_slip, sc.slip_bound)});
+  if (sc.ratio_target) ratio_checks(sc, trace, c);
+  c.push_back({"no_gross_slip", min_sf >= 1.05,
+               fmt("min torque-capacity safety factor %.3f at t = %.2f s (limit 1.05)", min_sf, min_sf_t)});
+}
+
+bool any_watchdog(const std::vector<Sample>& trace) {
+  for (const Sample& s : trace)
+    if (s.watchdog) return true;
+  return false;
+}
+
+// One trace sample from the plant's latest group as `speeds`..`shift` show
+// it and the controller's last command.
+Sample sample_of(const Scenario& sc, const cvtctl::ClampLawParams& law, double t_s, double t_cmd,
+                 const cvt::can::PlantStatus& st, const cvt::can::PlantSpeeds& sp, const cvt::can::PlantRatio& ra,
+                 const cvt::can::PlantForces& fo, const cvt::can::PlantShift& sh, const cvtctl::ControllerNode& ctl) {
+  Sample s;
+  s.t_s = t_s;
+  s.demand_Nm = sc.demand_Nm(t_cmd);
+  s.clamp_cmd_N = ctl.last_output().clamp_force_cmd_N;
+  s.axial_N = fo.driver_axial_force_N;
+  s.torque_Nm = sp.torque_transmitted_Nm;
+  s.slip = ra.slip;
+  s.omega1 = sp.omega_driver_rad_s;
+  s.omega2 = sp.omega_driven_rad_s;
+  const float tau = std::fabs(s.torque_Nm) < 1.0f ? 1.0f : std::fabs(s.torque_Nm);
+  s.safety = cvtctl::torque_capacity_Nm(law, s.axial_N) / tau;
+  s.cmd_timeout = st.fault_cmd_timeout;
+  s.watchdog = st.fault_watchdog;
+  s.ratio_target = sc.ratio_target ? sc.ratio_target(t_cmd) : 0.0f;
+  s.geometric_ratio = ra.geometric_ratio;
+  s.driven_cmd_N = ctl.last_ratio_output().driven_clamp_cmd_N;
+  s.driven_axial_N = fo.driven_axial_force_N;
+  s.radius1_m = sh.radius_driver_m;
+  s.stop_under = sh.end_stop_underdrive;
+  s.stop_over = sh.end_stop_overdrive;
+  if (sc.ratio_target) {
+    // The capacity at the driver's running radius (docs/sil.md#ratio-control).
+    const float r1 = s.radius1_m > 0.01f ? s.radius1_m : law.r1_m;
+    s.safety = cvtctl::torque_capacity_at_Nm(law, s.axial_N, r1) / tau;
+  }
+  return s;
+}
+
+bool write_trace(const std::string& csv, const std::vector<Sample>& trace) {
+  std::FILE* f = std::fopen(csv.c_str(), "w");
+  if (f == nullptr) {
+    std::fprintf(stderr, "cvtplant-sil: %s: %s\n", csv.c_str(), std::strerror(errno));
+    return false;
+  }
+  std::fprintf(f, "t_s,demand_Nm,clamp_cmd_N,axial_force_N,torque_transmitted_Nm,slip,omega1_rad_s,omega2_rad_s,"
+                  "safety_factor,fault_cmd_timeout,fault_watchdog,ratio_target,geometric_ratio,driven_clamp_cmd_N,"
+                  "driven_axial_force_N,radius_driver_m,end_stop_underdrive,end_stop_overdrive\n");
+  for (const Sample& s : trace)
+    std::fprintf(f, "%.3f,%.2f,%.0f,%.0f,%.2f,%.4f,%.2f,%.2f,%.3f,%d,%d,%.4f,%.4f,%.0f,%.0f,%.5f,%d,%d\n", s.t_s,
+                 s.demand_Nm, s.clamp_cmd_N, s.axial_N, s.torque_Nm, s.slip, s.omega1, s.omega2, s.safety,
+                 s.cmd_timeout, s.watchdog, s.ratio_target, s.geometric_ratio, s.driven_cmd_N, s.driven_axial_N,
+                 s.radius1_m, s.stop_under, s.stop_over);
+  std::fclose(f);
+  return true;
+}
 
 ScenarioResult run_scenario(const Scenario& sc, Harness& h, FaultInjector& hf, cvtctl::ControllerNode& ctl,
                             FaultInjector& cf, const cvtctl::ClampLawParams& law, const std::string& out_dir) {
@@ -374,7 +651,8 @@ ScenarioResult run_scenario(const Scenario& sc, Harness& h, FaultInjector& hf, c
   std::vector<Sample> trace;
   std::uint32_t no_reply = 0, bad_time = 0, bad_mode = 0;
   const Faults& fx = sc.faults;
-  if (!h.request(cvt::can::SimRequest::Reset, 0, cvt::can::SceneId::TipIn)) ++no_reply;
+  h.expect_shift(sc.scene == cvt::can::SceneId::RatioControl);
+  if (!h.request(cvt::can::SimRequest::Reset, 0, sc.scene)) ++no_reply;
   // Baselines: the bridge's counters run over its lifetime.
   const cvt::can::PlantDiag diag0 = h.diag();
   const cvt::can::PlantCmdDiag cmd0 = h.cmd_diag();
@@ -382,7 +660,10 @@ ScenarioResult run_scenario(const Scenario& sc, Harness& h, FaultInjector& hf, c
   const std::uint32_t ctl_rejected0 = ctl.counters().rejected;
   h.clear_recovery();
   ctl.poll(100000000);
-  ctl.restart();
+  // Every run starts its E2E counters at 0, as the bridge's Reset expects
+  // (docs/sil.md#lock-step): a scenario's counter sequence does not depend
+  // on the scenarios before it.
+  ctl.reboot();
   const int periods = static_cast<int>(sc.t_end_s / kPeriod_s + 0.5);
   std::uint32_t expect_us = 0;
   for (int k = 0; k < periods && no_reply == 0; ++k) {
@@ -392,7 +673,10 @@ ScenarioResult run_scenario(const Scenario& sc, Harness& h, FaultInjector& hf, c
     if (fx.reboot_s >= 0 && std::fabs(t - fx.reboot_s) < 1e-9) ctl.reboot();
     for (const int lost : fx.lost_cmd_periods)
       if (lost == k) cf.lose_next_sent(cvt::can::CtrlCmd::kId);
-    if (!silent) {
+    cf.scale_clamp(in_window(t, sc.clamp_drop_start_s, sc.clamp_drop_end_s) ? sc.clamp_drop_factor : 1.0f);
+    if (!silent && sc.ratio_target) {
+      ctl.control_step_ratio(sc.demand_Nm(t), sc.ratio_target(t));
+    } else if (!silent) {
       ctl.control_step(sc.demand_Nm(t));
       if (in_window(t, fx.flood_start_s, fx.flood_end_s))
         for (int i = 1; i < fx.flood_frames; ++i) ctl.send_command();
@@ -413,39 +697,18 @@ ScenarioResult run_scenario(const Scenario& sc, Harness& h, FaultInjector& hf, c
     const cvt::can::PlantStatus& st = h.status();
     if (st.sim_time_us != expect_us) ++bad_time;
     if (st.plant_mode != cvt::can::PlantMode::LockStep) ++bad_mode;
-    Sample s;
-    s.t_s = st.sim_time_us * 1e-6;
-    s.demand_Nm = sc.demand_Nm(t);
-    s.clamp_cmd_N = ctl.last_output().clamp_force_cmd_N;
-    s.axial_N = h.forces().driver_axial_force_N;
-    s.torque_Nm = h.speeds().torque_transmitted_Nm;
-    s.slip = h.ratio().slip;
-    s.omega1 = h.speeds().omega_driver_rad_s;
-    s.omega2 = h.speeds().omega_driven_rad_s;
-    const float tau = std::fabs(s.torque_Nm) < 1.0f ? 1.0f : std::fabs(s.torque_Nm);
-    s.safety = cvtctl::torque_capacity_Nm(law, s.axial_N) / tau;
-    s.cmd_timeout = st.fault_cmd_timeout;
-    s.watchdog = st.fault_watchdog;
+    const Sample s =
+        sample_of(sc, law, st.sim_time_us * 1e-6, t, st, h.speeds(), h.ratio(), h.forces(), h.shift(), ctl);
     trace.push_back(s);
   }
   cf.freeze(false);
+  cf.scale_clamp(1.0f);
   // The closing diagnostics (SimCtrl None answers with them).
   if (no_reply == 0 && !h.request(cvt::can::SimRequest::None, 0, cvt::can::SceneId::Keep)) ++no_reply;
   res.wall_s = static_cast<double>(clock.now_ns() - t0) * 1e-9;
 
   const std::string csv = out_dir + "/sil-" + sc.name + ".csv";
-  bool trace_written = false;
-  if (std::FILE* f = std::fopen(csv.c_str(), "w")) {
-    trace_written = true;
-    std::fprintf(f, "t_s,demand_Nm,clamp_cmd_N,axial_force_N,torque_transmitted_Nm,slip,omega1_rad_s,omega2_rad_s,"
-                    "safety_factor,fault_cmd_timeout,fault_watchdog\n");
-    for (const Sample& s : trace)
-      std::fprintf(f, "%.3f,%.2f,%.0f,%.0f,%.2f,%.4f,%.2f,%.2f,%.3f,%d,%d\n", s.t_s, s.demand_Nm, s.clamp_cmd_N,
-                   s.axial_N, s.torque_Nm, s.slip, s.omega1, s.omega2, s.safety, s.cmd_timeout, s.watchdog);
-    std::fclose(f);
-  } else {
-    std::fprintf(stderr, "cvtplant-sil: %s: %s\n", csv.c_str(), std::strerror(errno));
-  }
+  const bool trace_written = write_trace(csv, trace);
 
   const double resends = h.resends() - resends0;
   const double ctl_rejected = ctl.counters().rejected - ctl_rejected0;
@@ -459,22 +722,8 @@ ScenarioResult run_scenario(const Scenario& sc, Harness& h, FaultInjector& hf, c
                fmt("%.0f groups with sim_time_us != 10000 k, %.0f not in LockStep", bad_time, bad_mode)});
   c.push_back({"frames_valid", h.rejected() == 0 && ctl_rejected == 0,
                fmt("harness rejected %.0f, controller rejected %.0f", h.rejected(), ctl_rejected)});
-  // Criteria (docs/sil.md#criteria), after the first 50 ms start-up.
-  double max_slip = 0, min_sf = 1e9, min_sf_t = 0;
-  bool watchdog = false;
-  for (const Sample& s : trace) {
-    watchdog = watchdog || s.watchdog;
-    if (s.t_s < 0.05) continue;
-    max_slip = std::fmax(max_slip, std::fabs(s.slip));
-    if (s.safety < min_sf) {
-      min_sf = s.safety;
-      min_sf_t = s.t_s;
-    }
-  }
-  c.push_back({"slip_bounded", max_slip <= 0.10, fmt("max |slip| %.4f (limit 0.10)", max_slip)});
-  c.push_back({"no_gross_slip", min_sf >= 1.05,
-               fmt("min torque-capacity safety factor %.3f at t = %.2f s (limit 1.05)", min_sf, min_sf_t)});
-  c.push_back({"no_watchdog_fault", !watchdog, watchdog ? "plant watchdog fault" : "none"});
+  motion_checks(sc, trace, c);
+  c.push_back({"no_watchdog_fault", !any_watchdog(trace), any_watchdog(trace) ? "plant watchdog fault" : "none"});
   const double timeouts = grew(h.diag().cmd_timeouts, diag0.cmd_timeouts);
   // A controller silent (or repeating itself) from `start`: its last fresh
   // command went out at start - 10 ms, the deadline is 50 ms later, seen by
@@ -561,6 +810,115 @@ ScenarioResult run_scenario(const Scenario& sc, Harness& h, FaultInjector& hf, c
   return res;
 }
 
+// How a real-time run is paced (docs/sil.md#ratio-realtime). On SocketCAN
+// the bridge process paces itself on CLOCK_MONOTONIC and `start`/`frame`
+// are empty; with the bridge in-process on the loopback bus, `frame` sleeps
+// the virtual clock to the next frame's deadline and runs it
+// (deterministic), `start` sets the first deadline.
+struct RealTimeBus {
+  cvt::port::Clock& clock;
+  std::function<void()> start, frame;
+  std::int64_t poll_ns;  // how long the controller waits for a frame per turn
+  const char* clock_name;
+};
+
+// A plant that overran more than this fraction of its frames did not keep
+// time: only the functional criteria are judged (docs/sil.md#ratio-realtime).
+constexpr double kMaxOverrunFraction = 0.10;
+
+// A ratio scenario in real time: the bridge paces the plant at 1 kHz, the
+// controller runs on every fresh group (ControlSchedule, as
+// cvtplant-controller does), the harness only watches. Same criteria as in
+// lock-step where the run is comparable.
+ScenarioResult run_scenario_rt(const Scenario& sc, Harness& h, cvtctl::ControllerNode& ctl, FaultInjector& cf,
+                               const cvtctl::ClampLawParams& law, const std::string& out_dir, const RealTimeBus& bus) {
+  cvt::port::PosixMonotonicClock wall;
+  const std::int64_t w0 = wall.now_ns();
+  ScenarioResult res;
+  res.name = std::string(sc.name) + ".realtime";
+  std::vector<Sample> trace;
+  h.expect_shift(true);
+  bool answered = h.request(cvt::can::SimRequest::Reset, 0, sc.scene);
+  const cvt::can::PlantDiag diag0 = h.diag();
+  const std::uint32_t ctl_rejected0 = ctl.counters().rejected, h_rejected0 = h.rejected();
+  const std::uint32_t rt_status0 = h.realtime_statuses();
+  ctl.poll(100000000);
+  ctl.reboot();
+  cvtctl::ControlSchedule sched;
+  long steps = 0, fresh_steps = 0;
+  bool timeout_seen = false;
+  answered = answered && h.start_realtime();
+  if (bus.start) bus.start();
+  const std::int64_t t0 = bus.clock.now_ns();
+  const std::int64_t end = t0 + static_cast<std::int64_t>(sc.t_end_s * 1e9 + 0.5);
+  while (answered) {
+    if (bus.frame) bus.frame();
+    const std::int64_t now = bus.clock.now_ns();
+    if (now >= end) break;
+    const double t = static_cast<double>(now - t0) * 1e-9;
+    cf.scale_clamp(in_window(t, sc.clamp_drop_start_s, sc.clamp_drop_end_s) ? sc.clamp_drop_factor : 1.0f);
+    ctl.poll(bus.poll_ns);
+    h.drain();
+    timeout_seen = timeout_seen || h.status().fault_cmd_timeout;
+    if (!sched.due(now, ctl.fresh_group())) continue;
+    ctl.poll(0);  // whatever else is queued: the newest group wins
+    const bool fresh = ctl.fresh_group();
+    ctl.control_step_ratio(sc.demand_Nm(t), sc.ratio_target(t));
+    sched.ran(now);
+    ++steps;
+    if (!fresh) continue;
+    ++fresh_steps;
+    trace.push_back(sample_of(sc, law, t, t, h.status(), ctl.speeds(), ctl.ratio(), ctl.forces(), ctl.shift(), ctl));
+  }
+  cf.scale_clamp(1.0f);
+  answered = answered && h.pause();
+  res.wall_s = static_cast<double>(wall.now_ns() - w0) * 1e-9;
+
+  const std::string csv = out_dir + "/sil-" + sc.name + "-realtime.csv";
+  auto& c = res.checks;
+  c.push_back({"trace_written", write_trace(csv, trace), csv});
+  // Functional criteria: judged in every run.
+  const double frames = h.status().sim_time_us / 1000.0;
+  const double overruns = grew(h.diag().rt_overruns, diag0.rt_overruns);
+  const double rt_statuses = h.realtime_statuses() - rt_status0;
+  const bool kept_time = frames > 0 && overruns <= kMaxOverrunFraction * frames;
+  c.push_back({"realtime_paced", answered && rt_statuses > 0 && frames > 0,
+               fmt("%.0f plant frames in %.0f ms of the ", frames, sc.t_end_s * 1e3) + bus.clock_name +
+                   fmt(", %.0f overran; %.0f PlantStatus in RealTime; ", overruns, rt_statuses) +
+                   (kept_time ? "kept time: every criterion judged"
+                              : "did not keep time (more than 10 % of the frames overran): only realtime_paced, "
+                                "frames_valid and no_watchdog_fault are judged")});
+  // The plant rejects nothing but the counter jump that may follow a
+  // command timeout, one per command message (CtrlCmd, CtrlShiftCmd): the
+  // frames queued during the outage are drained, the next fresh one skips
+  // their counters (docs/sil.md#timeouts). With no timeout, nothing.
+  const double plant_rejected = grew(h.diag().rejected_frames, diag0.rejected_frames);
+  const double timeouts = grew(h.diag().cmd_timeouts, diag0.cmd_timeouts);
+  const double h_rej = h.rejected() - h_rejected0, ctl_rej = ctl.counters().rejected - ctl_rejected0;
+  c.push_back({"frames_valid", h_rej == 0 && ctl_rej == 0 && plant_rejected <= 2 * timeouts,
+               fmt("harness rejected %.0f, controller rejected %.0f, ", h_rej, ctl_rej) +
+                   fmt("PlantDiag.rejected_frames grew by %.0f (at most 2 counter jumps per command timeout: %.0f "
+                       "timeouts)",
+                       plant_rejected, timeouts)});
+  const bool watchdog = any_watchdog(trace) || h.status().fault_watchdog;
+  c.push_back({"no_watchdog_fault", !watchdog, watchdog ? "plant watchdog fault" : "none"});
+  // Judged when the plant kept time.
+  const std::size_t full_from = c.size();
+  const double expect_steps = std::floor(sc.t_end_s / kPeriod_s) - 1;
+  c.push_back({"control_on_fresh_groups", fresh_steps >= 0.95 * expect_steps,
+               fmt("%.0f control steps on a fresh group of %.0f steps (at least 95 %% of %.0f periods)",
+                   static_cast<double>(fresh_steps), static_cast<double>(steps), expect_steps)});
+  motion_checks(sc, trace, c);
+  c.push_back({"no_cmd_timeout", !timeout_seen && timeouts == 0,
+               timeout_seen ? fmt("fault_cmd_timeout raised, PlantDiag.cmd_timeouts grew by %.0f", timeouts) : "none"});
+  if (!kept_time)
+    for (std::size_t i = full_from; i < c.size(); ++i) {
+      c[i].judged = false;
+      c[i].detail = "not judged, the plant did not keep time: " + c[i].detail;
+    }
+  return res;
+}
+
 std::string xml_escape(const std::string& s) {
   std::string o;
   for (char ch : s) {
@@ -576,26 +934,31 @@ std::string xml_escape(const std::string& s) {
 bool write_junit(const std::string& path, const std::vector<ScenarioResult>& results) {
   std::FILE* f = std::fopen(path.c_str(), "w");
   if (f == nullptr) return false;
-  int tests = 0, failures = 0;
+  int tests = 0, failures = 0, skipped = 0;
   double wall = 0;
   for (const auto& r : results) {
     wall += r.wall_s;
     for (const auto& c : r.checks) {
       ++tests;
-      failures += c.pass ? 0 : 1;
+      failures += c.judged && !c.pass ? 1 : 0;
+      skipped += c.judged ? 0 : 1;
     }
   }
   std::fprintf(f, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
-  std::fprintf(f, "<testsuites name=\"cvtplant-sil\" tests=\"%d\" failures=\"%d\" time=\"%.3f\">\n", tests, failures,
-               wall);
+  std::fprintf(f, "<testsuites name=\"cvtplant-sil\" tests=\"%d\" failures=\"%d\" skipped=\"%d\" time=\"%.3f\">\n",
+               tests, failures, skipped, wall);
   for (const auto& r : results) {
-    int fails = 0;
-    for (const auto& c : r.checks) fails += c.pass ? 0 : 1;
-    std::fprintf(f, "  <testsuite name=\"sil.%s\" tests=\"%zu\" failures=\"%d\" time=\"%.3f\">\n", r.name.c_str(),
-                 r.checks.size(), fails, r.wall_s);
+    int fails = 0, skips = 0;
+    for (const auto& c : r.checks) {
+      fails += c.judged && !c.pass ? 1 : 0;
+      skips += c.judged ? 0 : 1;
+    }
+    std::fprintf(f, "  <testsuite name=\"sil.%s\" tests=\"%zu\" failures=\"%d\" skipped=\"%d\" time=\"%.3f\">\n",
+                 r.name.c_str(), r.checks.size(), fails, skips, r.wall_s);
     for (const auto& c : r.checks) {
       std::fprintf(f, "    <testcase classname=\"sil.%s\" name=\"%s\" time=\"0\">\n", r.name.c_str(), c.name.c_str());
-      if (!c.pass) std::fprintf(f, "      <failure message=\"%s\"/>\n", xml_escape(c.detail).c_str());
+      if (!c.judged) std::fprintf(f, "      <skipped message=\"%s\"/>\n", xml_escape(c.detail).c_str());
+      else if (!c.pass) std::fprintf(f, "      <failure message=\"%s\"/>\n", xml_escape(c.detail).c_str());
       std::fprintf(f, "      <system-out>%s</system-out>\n    </testcase>\n", xml_escape(c.detail).c_str());
     }
     std::fprintf(f, "  </testsuite>\n");
@@ -649,10 +1012,11 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (cmd != "run" && cmd != "bench") bad_usage("unknown subcommand '" + cmd + "'");
-  std::string iface = "vcan0", scenario = "all", out_dir = ".", junit;
+  std::string iface = "vcan0", scenario = "all", out_dir = ".", junit, mode = "lockstep";
   long steps = 5000;
   bool with_controller = false, loopback = false;
   double reply_timeout_ms = 0;  // 0: the default for the transport
+  std::int64_t frame_cost_ns = 0;
   cvtctl::ClampLawParams law;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
@@ -665,7 +1029,7 @@ int main(int argc, char** argv) {
       continue;
     }
     if (a != "--iface" && a != "--scenario" && a != "--out" && a != "--junit" && a != "--safety" && a != "--steps" &&
-        a != "--reply-timeout-ms")
+        a != "--reply-timeout-ms" && a != "--mode" && a != "--loopback-frame-cost-us")
       bad_usage("unknown option '" + a + "'");
     if (i + 1 >= argc) bad_usage(a + ": missing value");
     const std::string v = argv[++i];
@@ -674,6 +1038,16 @@ int main(int argc, char** argv) {
     else if (a == "--scenario") scenario = v;
     else if (a == "--out") out_dir = v;
     else if (a == "--junit") junit = v;
+    else if (a == "--loopback-frame-cost-us") {
+      const double us = std::strtod(v.c_str(), &end);
+      if (end == v.c_str() || *end != '\0' || !(us >= 0 && us <= 100000))
+        bad_usage("--loopback-frame-cost-us: expected 0..100000, got '" + v + "'");
+      frame_cost_ns = static_cast<std::int64_t>(us * 1e3 + 0.5);
+    } else if (a == "--mode") {
+      mode = v;
+      if (mode != "lockstep" && mode != "realtime" && mode != "both")
+        bad_usage("--mode: expected lockstep, realtime or both, got '" + v + "'");
+    }
     else if (a == "--safety") {
       law.safety = std::strtof(v.c_str(), &end);
       if (end == v.c_str() || *end != '\0' || !(law.safety > 0.1f && law.safety < 10.0f))
@@ -692,6 +1066,13 @@ int main(int argc, char** argv) {
   for (const Scenario& s : scenarios())
     if (scenario == "all" || scenario == s.name) chosen.push_back(s);
   if (chosen.empty()) bad_usage("--scenario: expected " + scenario_names() + ", got '" + scenario + "'");
+  // Real time runs the ratio scenarios (docs/sil.md#ratio-realtime); the
+  // fault scenarios need the harness's control of every step.
+  const bool run_lockstep = mode != "realtime", run_realtime = mode != "lockstep";
+  if (mode == "realtime" && scenario != "all" && !chosen.front().ratio_target)
+    bad_usage("--mode realtime: runs ratio-sweep, kick-down or slip-recovery, not '" + scenario + "'");
+  if (frame_cost_ns > 0 && (!loopback || !run_realtime))
+    bad_usage("--loopback-frame-cost-us: needs --loopback and --mode realtime or both");
   if (reply_timeout_ms == 0) reply_timeout_ms = loopback ? 20 : 1000;
   // Traces are part of the result: a directory that cannot be made is an
   // error now, not a silently missing CSV later.
@@ -727,21 +1108,53 @@ int main(int argc, char** argv) {
   // scenarios arm (docs/sil.md#fault-scenarios); otherwise it passes frames.
   FaultInjector harness_faults(*harness_bus), controller_faults(*controller_bus);
   Harness h(harness_faults, static_cast<std::int64_t>(reply_timeout_ms * 1e6), pump);
-  cvtctl::ControllerNode ctl(controller_faults, law);
+  // --safety sets the clamping margin of both laws (ClampLaw, RatioLaw).
+  cvtctl::RatioLawParams ratio_law;
+  ratio_law.clamp = law;
+  cvtctl::ControllerNode ctl(controller_faults, law, ratio_law);
   if (!h.sync()) {
     std::fprintf(stderr, "cvtplant-sil: the bridge on %s does not answer SimCtrl\n", loopback ? "loopback" : iface.c_str());
     return 1;
   }
   if (cmd == "bench") return bench(h, ctl, steps, with_controller);
 
+  // Real-time pacing: the bridge process on the wall clock, or the
+  // in-process bridge one frame per virtual millisecond.
+  // On the virtual clock the pacing is cvt::sil::pace_realtime's, one
+  // frame per turn; --loopback-frame-cost-us makes each frame's work take
+  // that long (a plant slower than its frame overruns).
+  cvt::port::PosixMonotonicClock wall;
+  std::int64_t deadline = 0;
+  const RealTimeBus rt_bus =
+      loopback ? RealTimeBus{vclock, [&] { deadline = vclock.now_ns() + loop_bridge.frame_ns(); },
+                             [&] {
+                               vclock.sleep_until(deadline);
+                               loop_bridge.realtime_frame();
+                               vclock.advance(frame_cost_ns);
+                               deadline += loop_bridge.frame_ns();
+                               if (vclock.now_ns() > deadline) loop_bridge.note_overrun();
+                             },
+                             0, "virtual clock"}
+               : RealTimeBus{wall, {}, {}, 1000000, "wall clock"};
   std::vector<ScenarioResult> results;
   bool all_pass = true;
-  for (const Scenario& s : chosen) {
-    results.push_back(run_scenario(s, h, harness_faults, ctl, controller_faults, law, out_dir));
+  auto report = [&](const Scenario& s) {
     const ScenarioResult& r = results.back();
     all_pass = all_pass && r.pass();
     std::printf("%s %s (%.1f s wall): %s\n", r.pass() ? "PASS" : "FAIL", r.name.c_str(), r.wall_s, s.what);
-    for (const Check& c : r.checks) std::printf("  %s %s: %s\n", c.pass ? "ok  " : "FAIL", c.name.c_str(), c.detail.c_str());
+    for (const Check& c : r.checks)
+      std::printf("  %s %s: %s\n", !c.judged ? "skip" : c.pass ? "ok  " : "FAIL", c.name.c_str(), c.detail.c_str());
+    std::fflush(stdout);
+  };
+  for (const Scenario& s : chosen) {
+    if (run_lockstep) {
+      results.push_back(run_scenario(s, h, harness_faults, ctl, controller_faults, law, out_dir));
+      report(s);
+    }
+    if (run_realtime && s.ratio_target) {
+      results.push_back(run_scenario_rt(s, h, ctl, controller_faults, law, out_dir, rt_bus));
+      report(s);
+    }
   }
   if (!junit.empty() && !write_junit(junit, results)) {
     std::fprintf(stderr, "cvtplant-sil: --junit %s: %s\n", junit.c_str(), std::strerror(errno));

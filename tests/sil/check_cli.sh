@@ -30,6 +30,11 @@ expect 2 "$SIL" fly
 expect 2 "$SIL" run --scenario nope
 expect 2 "$SIL" run --safety x
 expect 2 "$SIL" run --reply-timeout-ms 0
+expect 2 "$SIL" run --mode fast
+expect 2 "$SIL" run --loopback --mode realtime --scenario tip-in
+expect 2 "$SIL" run --loopback --mode realtime --loopback-frame-cost-us -1
+expect 2 "$SIL" run --mode realtime --loopback-frame-cost-us 1500
+expect 2 "$SIL" run --loopback --loopback-frame-cost-us 1500
 expect 2 "$SIL" bench --steps 0
 expect 1 "$SIL" run --iface nosuchcan0
 # An output directory that cannot be made is an error, not missing traces.
@@ -38,5 +43,9 @@ expect 0 "$CONTROLLER" --help
 expect 2 "$CONTROLLER" --bogus
 expect 2 "$CONTROLLER" --demand-Nm 900
 expect 2 "$CONTROLLER" --schedule sometimes
+expect 2 "$CONTROLLER" --ratio-steps 0:1.5,0.5
+expect 2 "$CONTROLLER" --ratio-steps 0:9
+expect 2 "$CONTROLLER" --ratio-steps 1:1.5
+expect 2 "$CONTROLLER" --ratio-steps 0:1.5,0:1.2
 expect 1 "$CONTROLLER" --iface nosuchcan0
 exit $rc
