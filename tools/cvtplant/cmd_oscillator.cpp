@@ -10,6 +10,7 @@
 
 #include "commands.hpp"
 #include "io_util.hpp"
+#include "options.hpp"
 #include "registry.hpp"
 #include "cvtplant/integrate/method.hpp"
 #include "cvtplant/plant/oscillator.hpp"
@@ -30,11 +31,13 @@ struct Options {
   bool json = false;
   // Settling test on the last window (docs/cli.md#oscillator-summary).
   double settle_window_s = 1.0;
+  cvtcli::Caps caps;
 };
 
 struct Summary {
   double final_state[4] = {0, 0, 0, 0};
   bool finite = true;
+  bool write_failed = false;
   bool settled = false;
   double x1_min = 0, x1_max = 0, v_abs_max = 0;
   double period_s = 0;  // 0 if no oscillation detected
@@ -101,7 +104,14 @@ Summary run(const Options& o, const cvt::FrictionParams<double>& fr, const doubl
       ++crossings;
     }
     prev_v1 = v1;
-    if (csv != nullptr && i % o.every == 0) write_row(t);
+    if (csv != nullptr && i % o.every == 0) {
+      write_row(t);
+      if (!cvtcli::output_ok(csv)) {  // closed pipe, full disk: stop, the caller reports it
+        s.write_failed = true;
+        s.steps = i;
+        break;
+      }
+    }
     s.steps = i;
   }
   s.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -120,25 +130,25 @@ cvtcli::Action register_oscillator(CLI::App& app) {
   sub->add_option("--friction", opt->friction, "Friction law: coulomb (constant mu0) or stribeck (section 3)")
       ->check(CLI::IsMember({"coulomb", "stribeck"}));
   sub->add_option("--x0", opt->x0, "Initial state X1,V1,X2,V2 [m, m/s, m, m/s]");
-  sub->add_option("--t-end", opt->t_end_s, "Simulated time [s]")->required();
-  sub->add_option("--dt", opt->dt_s, "Fixed step [s]");
+  cvtcli::add_real(sub, "--t-end", opt->t_end_s, {0, 1e6, true}, "Simulated time [s]")->required();
+  cvtcli::add_real(sub, "--dt", opt->dt_s, {1e-9, 1}, "Fixed step [s], at most --t-end");
   sub->add_option("--integrator", opt->integrator,
                   "euler | semi-implicit-euler | heun | rk4 | linear-implicit-euler | ros2");
   sub->add_option("--scalar", opt->scalar, "double | float | fixed (q16.16)")
       ->check(CLI::IsMember({"double", "float", "fixed"}));
   sub->add_option("--csv", opt->csv, "Write the trajectory as CSV (t,x1,v1,x2,v2,F1,F2); '-' for stdout");
-  sub->add_option("--every", opt->every, "Write every N-th step to the CSV")->check(CLI::PositiveNumber);
+  cvtcli::add_int(sub, "--every", opt->every, 1, 1000000000, "Write every N-th step to the CSV");
   sub->add_flag("--json", opt->json, "Print a JSON summary instead of the text one");
+  cvtcli::add_caps(sub, opt->caps, true, false);
 
   return [opt]() -> int {
     const Options& o = *opt;
     cvt::Method m{};
     if (!cvt::parse_method(o.integrator.c_str(), m))
       throw cvtcli::UsageError{"--integrator: unknown method '" + o.integrator + "'"};
-    if (!(o.t_end_s > 0) || !std::isfinite(o.t_end_s)) throw cvtcli::UsageError{"--t-end: must be > 0"};
-    if (!(o.dt_s > 0) || !std::isfinite(o.dt_s) || o.dt_s > o.t_end_s)
-      throw cvtcli::UsageError{"--dt: must be > 0 and <= --t-end"};
-    if (o.t_end_s / o.dt_s > 1e9) throw cvtcli::UsageError{"--t-end/--dt: more than 1e9 steps"};
+    if (o.dt_s > o.t_end_s) throw cvtcli::UsageError{"--dt: must be <= --t-end"};
+    cvtcli::require_steps(std::round(o.t_end_s / o.dt_s), o.caps, "--t-end / --dt");
+    if (o.json && o.csv == "-") throw cvtcli::UsageError{"--json and --csv - both write to stdout; give --csv a file"};
     if (o.scalar == "fixed" && o.dt_s < 4.0 / 65536.0)
       throw cvtcli::UsageError{"--dt: q16.16 cannot represent steps below 6.1e-5 s to 2 % (use --dt >= 1e-3)"};
     const std::vector<double> x0 = cvtcli::parse_list(o.x0, 4, "--x0");
@@ -153,6 +163,8 @@ cvtcli::Action register_oscillator(CLI::App& app) {
     else if (o.scalar == "float") s = run<float>(o, fr, x0.data(), csv);
     else s = run<cvt::q16_16>(o, fr, x0.data(), csv);
     cvtcli::close_output(csv);
+    // With the CSV on stdout the text summary goes to stderr: stdout holds data only.
+    std::FILE* info = csv == stdout ? stderr : stdout;
 
     const double x_eq = cvt::StickSlipOscillator<double>(cvt::OscillatorParams<double>::seed_section3(fr))
                             .sliding_equilibrium_m();
@@ -179,20 +191,26 @@ cvtcli::Action register_oscillator(CLI::App& app) {
       j["ns_per_step"] = s.steps > 0 ? 1e9 * s.wall_s / static_cast<double>(s.steps) : 0.0;
       cvtcli::print_json(j);
     } else {
-      std::printf("Stick-slip oscillator (seed Eq. 9), %s friction, %s, dt = %g s, %s\n", o.friction.c_str(),
+      std::fprintf(info, "Stick-slip oscillator (seed Eq. 9), %s friction, %s, dt = %g s, %s\n", o.friction.c_str(),
                   o.integrator.c_str(), o.dt_s, o.scalar.c_str());
-      std::printf("  start      [x1 v1 x2 v2] = [%g %g %g %g]\n", x0[0], x0[1], x0[2], x0[3]);
-      std::printf("  after %g s [x1 v1 x2 v2] = [%.6f %.6f %.6f %.6f]\n", o.t_end_s, s.final_state[0],
+      std::fprintf(info, "  start      [x1 v1 x2 v2] = [%g %g %g %g]\n", x0[0], x0[1], x0[2], x0[3]);
+      std::fprintf(info, "  after %g s [x1 v1 x2 v2] = [%.6f %.6f %.6f %.6f]\n", o.t_end_s, s.final_state[0],
                   s.final_state[1], s.final_state[2], s.final_state[3]);
-      std::printf("  behaviour: %s", behaviour);
-      if (s.settled) std::printf(" (sliding equilibrium x* = %.6f m)", x_eq);
+      std::fprintf(info, "  behaviour: %s", behaviour);
+      if (s.settled) std::fprintf(info, " (sliding equilibrium x* = %.6f m)", x_eq);
       if (s.period_s > 0)
-        std::printf(" (period %.4f s, x1 peak-to-peak %.4f m over the last %g s)", s.period_s, s.x1_max - s.x1_min,
+        std::fprintf(info, " (period %.4f s, x1 peak-to-peak %.4f m over the last %g s)", s.period_s, s.x1_max - s.x1_min,
                     o.settle_window_s);
-      std::printf("\n  %ld steps in %.3f s wall (%.0f ns/step)\n", s.steps, s.wall_s,
+      std::fprintf(info, "\n  %ld steps in %.3f s wall (%.0f ns/step)\n", s.steps, s.wall_s,
                   s.steps > 0 ? 1e9 * s.wall_s / static_cast<double>(s.steps) : 0.0);
     }
-    return s.finite ? 0 : 1;
+    if (!s.finite) {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "the state became non-finite at step %ld (t = %g s)", s.steps,
+                    static_cast<double>(s.steps) * o.dt_s);
+      throw cvtcli::RunError{std::string(buf) + ": the step is too large for this integrator"};
+    }
+    return 0;
   };
 }
 

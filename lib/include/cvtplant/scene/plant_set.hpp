@@ -64,14 +64,33 @@ struct RomPlantSet {
   }
 };
 
-// validate_scene, then whether the set has the scene's plant.
+// Whether the input profiles' declared ranges fit scalar T: a fixed-point
+// plant takes torques and forces in SI (plant/rom_units.hpp), so an input
+// beyond max() would be clipped at the rail for the whole run.
+template <class T>
+SceneIssue check_input_ranges(const Scene& s) {
+  if constexpr (std::is_floating_point<T>::value) {
+    (void)s;
+    return SceneIssue{};
+  } else {
+    const double limit = static_cast<double>(T::max());
+    const char* why = "the profile goes beyond the fixed-point range (|value| < 32768 in q16.16); run it in double or float";
+    if (!(profile_bound(s.tau_in) <= limit)) return SceneIssue{false, "tau_in", why};
+    if (!(profile_bound(s.tau_load) <= limit)) return SceneIssue{false, "tau_load", why};
+    if (!(profile_bound(s.clamp) <= limit)) return SceneIssue{false, "clamp", why};
+    return SceneIssue{};
+  }
+}
+
+// validate_scene, then whether the set has the scene's plant and the
+// scene's inputs fit its scalar type.
 template <class Set>
 SceneIssue check_scene_plant(const Scene& s) {
   const SceneIssue issue = validate_scene(s);
   if (!issue.ok) return issue;
   if (const char* why = missing_plant_reason<typename Set::Scalar>(s.features, Set::contains(s.features)))
     return SceneIssue{false, "features", why};
-  return SceneIssue{};
+  return check_input_ranges<typename Set::Scalar>(s);
 }
 
 // A scene's simulator, built from a plant set into storage it owns.
