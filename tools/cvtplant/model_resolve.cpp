@@ -1,5 +1,7 @@
 #include "model_resolve.hpp"
 
+#include <fstream>
+
 #include "commands.hpp"
 #include "scene_file.hpp"
 #include "cvtplant/analysis/errors.hpp"
@@ -11,15 +13,14 @@ namespace cvtcli {
 std::shared_ptr<const cvt::analysis::Model> resolve_model(const std::string& name_or_path) {
   namespace an = cvt::analysis;
   if (an::has_model(name_or_path)) return std::make_shared<an::Model>(an::find_model(name_or_path));
-  std::shared_ptr<LoadedScene> scene;
-  try {
-    scene = resolve_scene(name_or_path);
-  } catch (const UsageError&) {
+  if (cvt::find_builtin_scene(name_or_path.c_str()) == nullptr && !std::ifstream(name_or_path)) {
     std::string known;
     for (const an::Model& m : an::models()) known += (known.empty() ? "" : ", ") + m.name;
     throw UsageError{"unknown scene '" + name_or_path + "': not a model (" + known +
                      "), a built-in plant scene (see `cvtplant scenes`) or a readable scene file"};
   }
+  // A scene file's own refusal (FILE:LINE: field: why) reaches the user.
+  const std::shared_ptr<LoadedScene> scene = resolve_scene(name_or_path);
   try {
     return std::make_shared<an::Model>(an::rom_model(scene->scene, scene->name));
   } catch (const an::InputError& e) {
