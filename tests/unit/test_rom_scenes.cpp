@@ -235,18 +235,18 @@ TEST_CASE("scene validation: profile times >= 0, sines below half the frame rate
   b = s;
   b.clamp = cvt::ramp_profile(32768.0, 40000.0, 0, 1);
   REQUIRE(issue_of(b).ok);
-  CHECK(cvt::check_input_ranges<double>(b).ok);
-  CHECK(cvt::check_input_ranges<float>(b).ok);
-  const cvt::SceneIssue q = cvt::check_input_ranges<cvt::q16_16>(b);
+  CHECK(cvt::check_scalar_range<double>(b).ok);
+  CHECK(cvt::check_scalar_range<float>(b).ok);
+  const cvt::SceneIssue q = cvt::check_scalar_range<cvt::q16_16>(b);
   CHECK_FALSE(q.ok);
   CHECK(std::string(q.field) == "clamp");
   cvt::SceneSimulator<cvt::RomPlantSet<cvt::q16_16, f::axial>> fixed;
   CHECK(std::string(fixed.load(b).field) == "clamp");
   CHECK_FALSE(fixed.loaded());
   b.clamp = cvt::constant_profile(32767.0);
-  CHECK(cvt::check_input_ranges<cvt::q16_16>(b).ok);
+  CHECK(cvt::check_scalar_range<cvt::q16_16>(b).ok);
   b.tau_load = cvt::step_profile(0, -40000.0, 1);
-  CHECK(std::string(cvt::check_input_ranges<cvt::q16_16>(b).field) == "tau_load");
+  CHECK(std::string(cvt::check_scalar_range<cvt::q16_16>(b).field) == "tau_load");
 }
 
 TEST_CASE("lumped parameters follow from seed Table 1 (docs/rom.md#lumped-parameters)") {

@@ -38,12 +38,33 @@ struct Summary {
   double final_state[4] = {0, 0, 0, 0};
   bool finite = true;
   bool write_failed = false;
+  bool saturated = false;  // fixed point: the state left the range its arithmetic holds
   bool settled = false;
   double x1_min = 0, x1_max = 0, v_abs_max = 0;
   double period_s = 0;  // 0 if no oscillation detected
   long steps = 0;
   double wall_s = 0;
+  double dt_actual_s = 0;  // the step taken: --dt rounded to the scalar (q16.16: a multiple of 2^-16 s)
 };
+
+// Largest magnitude the right-hand side of seed Eq. 9 forms at state x
+// (docs/cli.md#oscillator-fixed-point): per mass, the friction force at its
+// largest coefficient, the ground spring and damper and the coupling element,
+// divided by the mass. In q16.16 every one of them must stay below 32768 or
+// it saturates; the run keeps them below half of that so the RK4 stages,
+// which evaluate the right-hand side up to a step ahead, stay in range too.
+double rhs_magnitude(const cvt::OscillatorParams<double>& p, const double x[4]) {
+  const double mu_max = p.friction.law == cvt::FrictionLaw::case2 ? p.friction.mu0 * p.friction.sigma : p.friction.mu0;
+  const double mid = p.k2_N_m * std::fabs(x[0] - x[2]) + p.c2_Ns_m * std::fabs(x[1] - x[3]);
+  double worst = 0;
+  for (int i = 0; i < 2; ++i) {
+    const double m = i == 0 ? p.m1_kg : p.m2_kg;
+    const double ground = p.k1_N_m * std::fabs(x[2 * i]) + p.c1_Ns_m * std::fabs(x[2 * i + 1]);
+    worst = std::max({worst, (mu_max * m * p.g_m_s2 + ground + mid) / m, ground, mid, std::fabs(x[2 * i + 1])});
+  }
+  return worst;
+}
+constexpr double kFixedHeadroom = 16384.0;  // half the q16.16 range
 
 template <class T>
 Summary run(const Options& o, const cvt::FrictionParams<double>& fr, const double x0[4], std::FILE* csv) {
@@ -60,6 +81,7 @@ Summary run(const Options& o, const cvt::FrictionParams<double>& fr, const doubl
   const long window_start = std::max<long>(0, n - std::lround(o.settle_window_s / h_actual));
 
   Summary s;
+  s.dt_actual_s = h_actual;
   s.x1_min = 1e300;
   s.x1_max = -1e300;
   // Period from upward zero crossings of v1 in the second half of the run
@@ -91,6 +113,14 @@ Summary run(const Options& o, const cvt::FrictionParams<double>& fr, const doubl
       s.finite = false;
       s.steps = i;
       break;
+    }
+    if constexpr (cvt::is_fixed_point_v<T>) {
+      const double xs[4] = {cvt::to_double(x(0)), v1, cvt::to_double(x(2)), cvt::to_double(x(3))};
+      if (rhs_magnitude(pd, xs) > kFixedHeadroom) {
+        s.saturated = true;
+        s.steps = i;
+        break;
+      }
     }
     if (i >= window_start) {
       const double x1 = cvt::to_double(x(0));
@@ -150,13 +180,22 @@ cvtcli::Action register_oscillator(CLI::App& app) {
     cvtcli::require_steps(std::round(o.t_end_s / o.dt_s), o.caps, "--t-end / --dt");
     if (o.json && o.csv == "-") throw cvtcli::UsageError{"--json and --csv - both write to stdout; give --csv a file"};
     if (o.scalar == "fixed" && o.dt_s < 4.0 / 65536.0)
-      throw cvtcli::UsageError{"--dt: q16.16 cannot represent steps below 6.1e-5 s to 2 % (use --dt >= 1e-3)"};
+      throw cvtcli::UsageError{"--dt: q16.16 steps are multiples of 2^-16 s; below 4 of them (6.1e-5 s) the "
+                               "increments are too coarse (use --dt >= 6.1e-5)"};
     const std::vector<double> x0 = cvtcli::parse_list(o.x0, 4, "--x0");
-    if (o.scalar == "fixed")
-      for (double v : x0)
-        if (std::fabs(v) > 1000.0) throw cvtcli::UsageError{"--x0: |value| > 1000 does not fit q16.16 with margin"};
     const auto fr = o.friction == "coulomb" ? cvt::friction_presets::oscillator_coulomb<double>()
                                              : cvt::friction_presets::oscillator_stribeck<double>();
+    if (o.scalar == "fixed") {
+      const double load = rhs_magnitude(cvt::OscillatorParams<double>::seed_section3(fr), x0.data());
+      if (load > kFixedHeadroom) {
+        char msg[200];
+        std::snprintf(msg, sizeof msg,
+                      "--x0: the right-hand side reaches %.4g at this state; q16.16 holds %.0f with the headroom "
+                      "its steps need (use --scalar double or float)",
+                      load, kFixedHeadroom);
+        throw cvtcli::UsageError{msg};
+      }
+    }
     std::FILE* csv = o.csv.empty() ? nullptr : cvtcli::open_output(o.csv);
     Summary s;
     if (o.scalar == "double") s = run<double>(o, fr, x0.data(), csv);
@@ -168,7 +207,11 @@ cvtcli::Action register_oscillator(CLI::App& app) {
 
     const double x_eq = cvt::StickSlipOscillator<double>(cvt::OscillatorParams<double>::seed_section3(fr))
                             .sliding_equilibrium_m();
-    const char* behaviour = !s.finite ? "diverged" : s.settled ? "settled" : s.period_s > 0 ? "oscillating" : "moving";
+    const char* behaviour = !s.finite       ? "diverged"
+                            : s.saturated   ? "saturated"
+                            : s.settled     ? "settled"
+                            : s.period_s > 0 ? "oscillating"
+                                             : "moving";
     if (o.json) {
       nlohmann::json j;
       j["subcommand"] = "oscillator";
@@ -176,6 +219,7 @@ cvtcli::Action register_oscillator(CLI::App& app) {
       j["integrator"] = o.integrator;
       j["scalar"] = o.scalar;
       j["dt_s"] = o.dt_s;
+      j["dt_actual_s"] = s.dt_actual_s;
       j["t_end_s"] = o.t_end_s;
       j["steps"] = s.steps;
       j["final_state"] = {{"x1", s.final_state[0]}, {"v1", s.final_state[1]}, {"x2", s.final_state[2]},
@@ -204,11 +248,18 @@ cvtcli::Action register_oscillator(CLI::App& app) {
       std::fprintf(info, "\n  %ld steps in %.3f s wall (%.0f ns/step)\n", s.steps, s.wall_s,
                   s.steps > 0 ? 1e9 * s.wall_s / static_cast<double>(s.steps) : 0.0);
     }
-    if (!s.finite) {
-      char buf[96];
-      std::snprintf(buf, sizeof buf, "the state became non-finite at step %ld (t = %g s)", s.steps,
-                    static_cast<double>(s.steps) * o.dt_s);
-      throw cvtcli::RunError{std::string(buf) + ": the step is too large for this integrator"};
+    if (!s.finite || s.saturated) {
+      char buf[200];
+      if (!s.finite)
+        std::snprintf(buf, sizeof buf,
+                      "the state became non-finite at step %ld (t = %g s): the step is too large for this integrator",
+                      s.steps, static_cast<double>(s.steps) * s.dt_actual_s);
+      else
+        std::snprintf(buf, sizeof buf,
+                      "the state left the q16.16 range at step %ld (t = %g s): the right-hand side exceeds %.0f "
+                      "(use --scalar double or float)",
+                      s.steps, static_cast<double>(s.steps) * s.dt_actual_s, kFixedHeadroom);
+      throw cvtcli::RunError{buf};
     }
     return 0;
   };

@@ -21,7 +21,8 @@ std::shared_ptr<const cvt::analysis::Model> resolve_model(const std::string& nam
     throw UsageError{"unknown scene " + quoted(name_or_path, 200) + ": not a model (" + known +
                      "), a built-in plant scene (see `cvtplant scenes`) or a readable scene file"};
   }
-  // A file that exists but is no scene says why (directory, syntax, ...).
+  // A file that exists but is no scene says why: a directory, a syntax
+  // error, or the scene's own refusal (FILE:LINE: field: why).
   const std::shared_ptr<LoadedScene> scene = resolve_scene(name_or_path);
   try {
     return std::make_shared<an::Model>(an::rom_model(scene->scene, scene->name));

@@ -228,7 +228,7 @@ class Reader {
       check_known(*t, pre,
                   {"r1_m", "r2_m", "beta0_deg", "center_distance_m", "J1_kgm2", "J2_kgm2", "lump_mass_kg", "k1_N_m",
                    "c1_Ns_m", "k2_N_m", "c2_Ns_m", "hold_driver_speed", "hold_driven_speed", "stick_speed_m_s",
-                   "actuator_tau_s", "clamp_max_N", "sheave_mass_kg", "sheave_damping_Ns_m", "K_ax_N_m", "road_T0_Nm",
+                   "speed_limit_rad_s", "actuator_tau_s", "clamp_max_N", "sheave_mass_kg", "sheave_damping_Ns_m", "K_ax_N_m", "road_T0_Nm",
                    "road_cv_Nms_rad", "road_ca_Nms2_rad2", "road_w_eps_rad_s", "zeta1_rad", "zeta2_rad", "pitch_m",
                    "driven_clamp_N", "radial_mass_kg", "radial_damping_Ns_m", "radial_travel_m", "radial_stop_N_m"});
       p.r1_m = number(*t, pre, "r1_m", p.r1_m);
@@ -245,6 +245,7 @@ class Reader {
       p.hold_driver_speed = boolean(*t, pre, "hold_driver_speed", p.hold_driver_speed);
       p.hold_driven_speed = boolean(*t, pre, "hold_driven_speed", p.hold_driven_speed);
       p.stick_speed_m_s = number(*t, pre, "stick_speed_m_s", p.stick_speed_m_s);
+      p.speed_limit_rad_s = number(*t, pre, "speed_limit_rad_s", p.speed_limit_rad_s);
       p.actuator_tau_s = number(*t, pre, "actuator_tau_s", p.actuator_tau_s);
       p.clamp_max_N = number(*t, pre, "clamp_max_N", p.clamp_max_N);
       p.sheave_mass_kg = number(*t, pre, "sheave_mass_kg", p.sheave_mass_kg);

@@ -44,7 +44,10 @@ class RomSimulator {
         h_(T(c.frame_s / static_cast<double>(c.substeps < 1 ? 1 : c.substeps) / Plant::U::time_s)),
         h_acc_(Acc(c.frame_s / static_cast<double>(c.substeps < 1 ? 1 : c.substeps))),
         rel_tol_(Acc(c.energy_rel_tol)),
-        abs_tol_(Acc(c.energy_abs_tol_J)) {
+        abs_tol_(Acc(c.energy_abs_tol_J)),
+        speed_limit_(T(p.speed_limit_rad_s)),
+        resolved_speed_(T(rom_polygon_resolved_speed_rad_s(
+            p, c.frame_s / static_cast<double>(c.substeps < 1 ? 1 : c.substeps)))) {
     x_.setZero();
   }
 
@@ -53,6 +56,7 @@ class RomSimulator {
     plant_.inputs = u0;
     x_ = plant_.initial_state(x0);
     fault_ = RomFault::none;
+    carry_.clear();
     ledger_ = EnergyLedger<Acc>{};
     ledger_.stored0_J = ledger_.stored_J = plant_.stored_energy(x_);
     frames_ = 0;
@@ -63,57 +67,26 @@ class RomSimulator {
   // (latched) fault state; a faulted simulator keeps its last good state.
   RomFault step_frame(const RomInputs<T>& u) {
     if (fault_ != RomFault::none) return fault_;
-    if (!rom_finite(u.tau_in_Nm) || !rom_finite(u.tau_load_Nm) || !rom_finite(u.clamp_N)) {
-      fault_ = RomFault::input_non_finite;
-      return fault_;
-    }
+    fault_ = rom_input_fault(u.tau_in_Nm, u.tau_load_Nm, u.clamp_N);
+    if (fault_ != RomFault::none) return fault_;
     plant_.inputs = u;
     if (contact_stale_) refresh_contact();
     const State x_prev = x_;
     const EnergyLedger<Acc> ledger_prev = ledger_;
     const Contact contact_prev = contact_;
-    const int n = cfg_.substeps < 1 ? 1 : cfg_.substeps;
-    RomPower<Acc> p0 = power_now();
-    for (int i = 0; i < n; ++i) {
-      advance_substep();
-      plant_.wrap(x_);
-      RomFault f = rom_state_fault(x_);
-      if (f == RomFault::none && !plant_.radius_in_range(x_)) f = RomFault::radius_out_of_range;
-      if (f != RomFault::none) {
-        x_ = x_prev;
-        ledger_ = ledger_prev;
-        contact_ = contact_prev;
-        fault_ = f;
-        return fault_;
-      }
-      // The friction at the new state serves this power term and the next
-      // substep's Jacobian and right-hand side (docs/rom.md#cost).
-      refresh_contact();
-      // docs/rom.md#energy-balance: trapezoid on the power terms at the
-      // substep ends (inputs constant over the frame).
-      const RomPower<Acc> p1 = power_now();
-      const Acc hh = h_acc_ * Acc(0.5);
-      ledger_.input_J += hh * (p0.input_W + p1.input_W);
-      ledger_.actuator_J += hh * (p0.actuator_W + p1.actuator_W);
-      ledger_.load_J += hh * (p0.load_W + p1.load_W);
-      ledger_.friction_loss_J += hh * (p0.friction_loss_W + p1.friction_loss_W);
-      ledger_.damping_loss_J += hh * (p0.damping_loss_W + p1.damping_loss_W);
-      p0 = p1;
-    }
-    ledger_.stored_J = plant_.stored_energy(x_);
-    ++frames_;
-    if (cfg_.watchdog_energy) {
-      const Acc r = ledger_.residual_J();
-      if (!(r == r) || r > rel_tol_ * ledger_.scale_J() + abs_tol_) {
-        x_ = x_prev;
-        ledger_ = ledger_prev;
-        contact_ = contact_prev;
-        fault_ = RomFault::energy_growth;
-      }
+    const Carry carry_prev = carry_;
+    const RomFault f = integrate_frame();
+    if (f != RomFault::none) {
+      x_ = x_prev;
+      ledger_ = ledger_prev;
+      contact_ = contact_prev;
+      carry_ = carry_prev;
+      fault_ = f;
     }
     return fault_;
   }
 
+  static constexpr std::uint32_t features() { return Features; }
   RomOutputs<T> outputs() const { return plant_.outputs(x_); }
   // The state in the plant's units (RomUnits: SI except fixed point, whose
   // displacements are in 2^-10 m); state_si() converts for logs.
@@ -140,6 +113,44 @@ class RomSimulator {
   // Friction of the current state (docs/rom.md#cost); empty with wedging.
   struct NoContact {};
   using Contact = std::conditional_t<kContact, typename Plant::Contact, NoContact>;
+  // Rounding remainders of the fixed-point increments (integrate/increment.hpp).
+  using Carry = IncrementCarry<T, Plant::kStates>;
+
+  // The substeps of one frame with the ledger, then the frame's checks: the
+  // first fault, or none.
+  RomFault integrate_frame() {
+    const int n = cfg_.substeps < 1 ? 1 : cfg_.substeps;
+    RomPower<Acc> p0 = power_now();
+    for (int i = 0; i < n; ++i) {
+      advance_substep();
+      plant_.wrap(x_);
+      const RomFault f = rom_state_fault(x_);
+      if (f != RomFault::none) return f;
+      if (!plant_.radius_in_range(x_)) return RomFault::radius_out_of_range;
+      // The friction at the new state serves this power term and the next
+      // substep's Jacobian and right-hand side (docs/rom.md#cost).
+      refresh_contact();
+      // docs/rom.md#energy-balance: trapezoid on the power terms at the
+      // substep ends (inputs constant over the frame).
+      const RomPower<Acc> p1 = power_now();
+      ledger_.add_trapezoid(p0, p1, h_acc_ * Acc(0.5));
+      p0 = p1;
+    }
+    ledger_.stored_J = plant_.stored_energy(x_);
+    ++frames_;
+    // Pulleys within the model's speed range; with chordal action, a driver
+    // slow enough for the step to resolve the link passing (docs/rom.md#polygon).
+    if (abs_of(x_(Plant::Layout::kW1)) > speed_limit_ || abs_of(x_(Plant::Layout::kW2)) > speed_limit_)
+      return RomFault::speed_out_of_range;
+    if constexpr (Plant::Layout::kPolygon) {
+      if (abs_of(x_(Plant::Layout::kW1)) > resolved_speed_) return RomFault::step_unresolved;
+    }
+    if (cfg_.watchdog_energy) {
+      const Acc r = ledger_.residual_J();
+      if (!(r == r) || r > rel_tol_ * ledger_.scale_J() + abs_tol_) return RomFault::energy_growth;
+    }
+    return RomFault::none;
+  }
 
   void refresh_contact() {
     if constexpr (kContact) contact_ = plant_.contact(x_);
@@ -152,12 +163,13 @@ class RomSimulator {
   void advance_substep() {
     if constexpr (kContact) {
       if (cfg_.method == Method::ros2 || cfg_.method == Method::linear_implicit_euler) {
-        rom_step_implicit(cfg_.method, plant_, x_, h_, contact_, cfg_.w_slope_floor);
+        rom_step_implicit(cfg_.method, plant_, x_, h_, contact_, cfg_.w_slope_floor, &carry_);
         return;
       }
     }
-    rom_step(cfg_.method, plant_, x_, h_, cfg_.w_slope_floor);
+    rom_step(cfg_.method, plant_, x_, h_, cfg_.w_slope_floor, &carry_);
   }
+  static T abs_of(const T& v) { return v < T(0) ? -v : v; }
 
   Plant plant_;
   RomSimConfig cfg_;
@@ -168,6 +180,8 @@ class RomSimulator {
   RomFault fault_ = RomFault::none;
   EnergyLedger<Acc> ledger_{};
   Contact contact_{};
+  Carry carry_{};
+  T speed_limit_, resolved_speed_;
   bool contact_stale_ = true;
   long frames_ = 0;
 };

@@ -147,6 +147,7 @@ struct SceneIssue {
 
 namespace scene_detail {
 constexpr bool fin(double v) { return v == v && v - v == 0.0; }
+constexpr double abs_of(double v) { return v < 0 ? -v : v; }
 constexpr SceneIssue bad(const char* field, const char* message) { return SceneIssue{false, field, message}; }
 
 // `frame_s`: the profile is sampled once per frame, so a sine above half the
@@ -189,6 +190,7 @@ inline SceneIssue check_profile(const Profile& p, const char* field, bool non_ne
 
 // Rejects non-physical or out-of-range parameters before a run.
 inline SceneIssue validate_scene(const Scene& s) {
+  using scene_detail::abs_of;
   using scene_detail::bad;
   using scene_detail::fin;
   const RomParams& p = s.params;
@@ -206,6 +208,8 @@ inline SceneIssue validate_scene(const Scene& s) {
   if (!(fin(p.c1_Ns_m) && p.c1_Ns_m >= 0)) return bad("c1_Ns_m", "must be >= 0");
   if (!(fin(p.c2_Ns_m) && p.c2_Ns_m >= 0)) return bad("c2_Ns_m", "must be >= 0");
   if (!(fin(p.stick_speed_m_s) && p.stick_speed_m_s > 0)) return bad("stick_speed_m_s", "must be > 0");
+  if (!(fin(p.speed_limit_rad_s) && p.speed_limit_rad_s > 0 && p.speed_limit_rad_s <= 30000))
+    return bad("speed_limit_rad_s", "must be in (0, 30000] rad/s");
   const FrictionParams<double>& f = p.friction;
   if (!(fin(f.mu0) && f.mu0 > 0 && f.mu0 <= 2)) return bad("mu0", "must be in (0, 2]");
   if (!(fin(f.lambda_s_m) && f.lambda_s_m > 0)) return bad("lambda_s_m", "must be > 0");
@@ -259,12 +263,20 @@ inline SceneIssue validate_scene(const Scene& s) {
   if (!(fin(x.omega1_rad_s) && fin(x.omega2_rad_s) && fin(x.x1_m) && fin(x.xd1_m_s) && fin(x.x2_m) &&
         fin(x.xd2_m_s) && fin(x.phase_rad)))
     return bad("initial", "initial values must be finite");
+  if (!(abs_of(x.omega1_rad_s) <= p.speed_limit_rad_s && abs_of(x.omega2_rad_s) <= p.speed_limit_rad_s))
+    return bad("initial", "pulley speeds must be within speed_limit_rad_s");
   if (!(fin(s.t_end_s) && s.t_end_s > 0 && s.t_end_s <= 1e5)) return bad("t_end_s", "must be in (0, 1e5] s");
   if (!(fin(s.frame_s) && s.frame_s >= 1e-7 && s.frame_s <= s.t_end_s)) return bad("frame_s", "must be in [1e-7 s, t_end_s]");
   if (SceneIssue i = scene_detail::check_profile(s.tau_in, "tau_in", false, s.frame_s); !i.ok) return i;
   if (SceneIssue i = scene_detail::check_profile(s.tau_load, "tau_load", false, s.frame_s); !i.ok) return i;
   if (SceneIssue i = scene_detail::check_profile(s.clamp, "clamp", true, s.frame_s); !i.ok) return i;
   if (s.substeps < 1 || s.substeps > 10000) return bad("substeps", "must be in 1..10000");
+  // docs/rom.md#polygon: 8 steps per link passage at the starting driver speed
+  // (the watchdog faults step-unresolved when the driver gets faster).
+  if ((s.features & rom_feature::polygon) &&
+      abs_of(x.omega1_rad_s) > rom_polygon_resolved_speed_rad_s(p, s.frame_s / s.substeps))
+    return bad("substeps", "polygon: the step does not resolve the link passing at the starting driver speed "
+                           "(8 steps per link needed): raise substeps");
   if ((s.log & ~rom_log::all) != 0u) return bad("log", "unknown log group");
   return SceneIssue{};
 }
