@@ -12,8 +12,8 @@
 //   bench_soak                           100,000 frames (the CI smoke run)
 //
 // Not a timed test: nothing here asserts a time. The exit status is 1 if a
-// run faulted or its ledger residual is not finite, so a smoke run still
-// catches a broken plant.
+// run faulted, its ledger residual is not finite or the heap in use grew,
+// so a smoke run still catches a broken plant.
 #include <benchmark/benchmark.h>
 #include <malloc.h>
 
@@ -103,6 +103,9 @@ void soak(benchmark::State& st) {
   if (fault != cvt::RomFault::none || !std::isfinite(resid_end)) {
     g_failed = true;
     st.SkipWithError(("the plant faulted: " + std::string(cvt::rom_fault_name(fault))).c_str());
+  } else if (heap_end != heap_start) {
+    g_failed = true;
+    st.SkipWithError("the heap in use grew during the run (the plant is heap-free)");
   }
 }
 

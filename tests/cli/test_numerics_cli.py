@@ -75,6 +75,7 @@ class Refusal(unittest.TestCase):
         r = run("run", "--scene", p, "--scalar", "double", "--json")
         self.assertEqual(r.returncode, 1, r.stderr)  # runs; the driver passes the speed limit
         self.assertEqual(json.loads(r.stdout)["fault"], "speed-out-of-range")
+        self.assertIn("cvtplant run: failed: the plant faulted: speed-out-of-range", r.stderr)
 
 
 class Watchdog(unittest.TestCase):
@@ -85,6 +86,7 @@ class Watchdog(unittest.TestCase):
         j = json.loads(r.stdout)
         self.assertEqual(j["fault"], "speed-out-of-range")
         self.assertLessEqual(abs(j["final"]["omega1_rad_s"]), 2000.0)
+        self.assertIn("cvtplant run: failed: the plant faulted: speed-out-of-range", r.stderr)
 
     def test_polygon_step_that_cannot_resolve_the_links(self):
         launch = os.path.join(SCENES, "vehicle-launch.toml")
@@ -98,6 +100,7 @@ class Watchdog(unittest.TestCase):
         r = run("run", "--scene", launch, "--substeps", "4", "--json")
         self.assertEqual(r.returncode, 1, r.stdout + r.stderr)
         self.assertEqual(json.loads(r.stdout)["fault"], "step-unresolved")
+        self.assertIn("cvtplant run: failed: the plant faulted: step-unresolved", r.stderr)
         r = run("run", "--scene", launch, "--json")
         self.assertEqual(r.returncode, 0, r.stderr)
         j = json.loads(r.stdout)
@@ -135,6 +138,7 @@ class FixedPointOscillator(unittest.TestCase):
         r = run("oscillator", "--scalar", "fixed", "--x0", "0,5000,0,-5000", "--t-end", "5", "--json")
         self.assertEqual(r.returncode, 1, r.stdout + r.stderr)
         self.assertEqual(json.loads(r.stdout)["behaviour"], "saturated")
+        self.assertRegex(r.stderr, r"^cvtplant oscillator: failed: the state left the q16.16 range at step \d+")
 
 
 class Analysis(unittest.TestCase):
