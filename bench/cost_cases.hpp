@@ -42,6 +42,11 @@ void for_each_case(Visitor&& v) {
   v.template visit<f::basic>(Case{"feature/all-but-wedging-x4", "gross-slip", 4});
   // Wedging is meaningful on a scene with the seed clamping (docs/rom.md#wedging).
   v.template visit<f::axial | f::wedging>(Case{"feature/seed-case1+wedging", "seed-case1", 0});
+  // The plant of ratio control over CAN (docs/sil.md#ratio-control), off the
+  // end stops, and clamp-step with wedging, whose 1.2 kN has driven the chain
+  // onto the hub stop by 1 s: a frame in stop_substeps steps (docs/rom.md#end-stop).
+  v.template visit<f::axial | f::road_load | f::wedging>(Case{"scene/ratio-control", "ratio-control", 0});
+  v.template visit<f::axial | f::road_load | f::wedging>(Case{"scene/clamp-step+wedging-on-stop", "clamp-step", 0});
 }
 
 // Where the measured frame starts: the scene run on its own input profiles

@@ -12,7 +12,7 @@ CLI = sys.argv.pop(1) if len(sys.argv) > 1 else "cvtplant"
 HERE = os.path.dirname(os.path.abspath(__file__))
 SCENES = os.path.join(HERE, "..", "..", "tools", "scenes")
 BUILTIN = ["oscillator-coulomb", "oscillator-stribeck", "seed-case1", "seed-case2", "clamp-step", "tip-in",
-           "gross-slip"]
+           "gross-slip", "ratio-control"]
 
 
 def run(*args):

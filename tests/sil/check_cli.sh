@@ -38,5 +38,9 @@ expect 0 "$CONTROLLER" --help
 expect 2 "$CONTROLLER" --bogus
 expect 2 "$CONTROLLER" --demand-Nm 900
 expect 2 "$CONTROLLER" --schedule sometimes
+expect 2 "$CONTROLLER" --ratio-steps 0:1.5,0.5
+expect 2 "$CONTROLLER" --ratio-steps 0:9
+expect 2 "$CONTROLLER" --ratio-steps 1:1.5
+expect 2 "$CONTROLLER" --ratio-steps 0:1.5,0:1.2
 expect 1 "$CONTROLLER" --iface nosuchcan0
 exit $rc

@@ -50,3 +50,17 @@ extern "C" float cvt_controller_m4_smoke(const cvt::can::CanFrame* in, float dem
   }
   return g_node.last_output().clamp_force_cmd_N;
 }
+
+// The same with ratio control (docs/sil.md#ratio-control): both clamping
+// commands from RatioLaw; returns the driven one [N].
+extern "C" float cvt_controller_m4_ratio_smoke(const cvt::can::CanFrame* in, float demand_Nm, float ratio_target,
+                                               int64_t now_ns) {
+  g_can.rx = *in;
+  g_can.rx_full = true;
+  g_node.poll(0);
+  if (g_schedule.due(now_ns, g_node.fresh_group())) {
+    g_node.control_step_ratio(demand_Nm, ratio_target);
+    g_schedule.ran(now_ns);
+  }
+  return g_node.last_ratio_output().driven_clamp_cmd_N;
+}

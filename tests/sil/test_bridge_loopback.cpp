@@ -28,6 +28,15 @@ struct Peer {
   can::TxChannel<can::HarnessLoad> load;
   uint8_t seq = 0;
 
+  void send_shift(float driven_N, float target) {
+    can::CtrlShiftCmd m;
+    m.driven_clamp_force_cmd_N = driven_N;
+    m.ratio_target = target;
+    can::CanFrame f;
+    REQUIRE(shift.encode(m, f) == can::CodecStatus::Ok);
+    REQUIRE(node.send(f) == CanIoStatus::Ok);
+  }
+
   can::CanFrame cmd_frame(float clamp_N, float torque_Nm) {
     can::CtrlCmd m;
     m.clamp_force_cmd_N = clamp_N;
@@ -55,6 +64,7 @@ struct Peer {
     REQUIRE(sim.encode(last_request, f) == can::CodecStatus::Ok);
     REQUIRE(node.send(f) == CanIoStatus::Ok);
   }
+  can::TxChannel<can::CtrlShiftCmd> shift{};
 };
 
 struct Group {
@@ -62,6 +72,8 @@ struct Group {
   can::PlantSpeeds speeds;
   can::PlantRatio ratio;
   can::PlantForces forces;
+  bool has_shift = false;
+  can::PlantShift shift;
   can::PlantStatus status;
   bool has_diag = false;
   can::PlantDiag diag;
@@ -81,6 +93,7 @@ Group read_group(port::CanTransport& node) {
       case can::MessageId::PlantSpeeds: g.speeds = a.plant_speeds; break;
       case can::MessageId::PlantRatio: g.ratio = a.plant_ratio; break;
       case can::MessageId::PlantForces: g.forces = a.plant_forces; break;
+      case can::MessageId::PlantShift: g.has_shift = true; g.shift = a.plant_shift; break;
       case can::MessageId::PlantDiag: g.has_diag = true; g.diag = a.plant_diag; break;
       case can::MessageId::PlantBusDiag:
         REQUIRE(g.has_diag);  // PlantDiag, PlantBusDiag, PlantCmdDiag, in this order
@@ -103,7 +116,7 @@ struct Rig {
   port::VirtualClock clock;
   Bus bus{&clock};
   Bridge bridge{bus.node(0), clock};
-  Peer peer{bus.node(1), {}, {}, {}, 0, {}};
+  Peer peer{bus.node(1), {}, {}, {}, 0, {}, {}};
 
   explicit Rig(const char* scene = "tip-in") { REQUIRE(bridge.load_scene(*find_builtin_scene(scene))); }
   Group step(uint16_t n) {
@@ -877,4 +890,47 @@ TEST_CASE("real-time pacing: on time without overruns; slow frames are overruns 
       CHECK(late.back() > late.front());  // behind, and catching up without sleeping
     }
   }
+}
+
+TEST_CASE("variable ratio: PlantShift in the group, CtrlShiftCmd sets the driven clamping, its timeout ramps") {
+  // docs/sil.md#ratio-control
+  Rig rig("ratio-control");
+  const Scene& sc = *find_builtin_scene("ratio-control");
+  Group g = rig.step(10);
+  REQUIRE(g.frames.size() == 5);
+  CHECK(g.frames[3].id == can::PlantShift::kId);
+  CHECK(g.shift.sample_tag == g.status.sample_tag);
+  // Before any CtrlShiftCmd: the scene's driven clamping, and the set-up radii.
+  CHECK(std::fabs(g.forces.driven_axial_force_N - sc.params.driven_clamp_N) <= 0.5);
+  CHECK(std::fabs(g.shift.radius_driver_m - sc.params.r1_m) < 2e-4);
+  CHECK(!g.shift.end_stop_underdrive);
+  CHECK(!g.shift.end_stop_overdrive);
+  // 5 kN driven against 3.3 kN primary: the chain moves in on the driver
+  // (downshift) and reaches the underdrive stop, which PlantShift reports.
+  bool stop_seen = false;
+  for (int k = 0; k < 300 && !stop_seen; ++k) {
+    rig.peer.send_cmd(3300.0f, 60.0f);
+    rig.peer.send_shift(8000.0f, 2.6f);
+    g = rig.step(10);
+    stop_seen = g.shift.end_stop_underdrive;
+  }
+  CHECK(stop_seen);
+  CHECK(g.ratio.geometric_ratio > 2.5f);
+  CHECK(std::fabs(g.forces.driven_axial_force_N - 8000.0f) < 100.0f);
+  CHECK(rig.bridge.plant().stop_refined_frames() > 0);
+  CHECK(g.status.plant_mode == can::PlantMode::LockStep);
+  // The controller stops sending CtrlShiftCmd: after 50 ms the timeout
+  // flag, and the driven command ramps from 8 kN toward 20 kN at 50 N per
+  // frame (the DBC's Ramp), never a step.
+  const double before = rig.bridge.driven_command();
+  for (int k = 0; k < 10; ++k) {
+    rig.peer.send_cmd(3300.0f, 60.0f);
+    g = rig.step(10);
+  }
+  CHECK(g.status.fault_cmd_timeout);
+  CHECK(rig.bridge.shift_timeouts() == 1);
+  CHECK(rig.bridge.shift_state() == Bridge::CmdState::TimedOut);
+  const double after = rig.bridge.driven_command();
+  CHECK(after > before);
+  CHECK(after <= before + 100 * 50.0 + 1.0);
 }

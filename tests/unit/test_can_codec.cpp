@@ -198,7 +198,7 @@ TEST_CASE("physical range check: limits accepted, beyond rejected, nothing writt
   s.sim_request = static_cast<SimRequest>(9);
   CHECK(pack(s, e) == CodecStatus::InvalidEnum);
   s.sim_request = SimRequest::Reset;
-  s.scene_id = static_cast<SceneId>(8);
+  s.scene_id = static_cast<SceneId>(9);
   CHECK(pack(s, e) == CodecStatus::InvalidEnum);
   PlantStatus st;
   st.step_seq_ack = 200;
@@ -240,7 +240,7 @@ TEST_CASE("decoder rejects raw codes outside [min|max] and unknown enum values")
   SimCtrl s;
   CHECK(unpack(d, s) == CodecStatus::InvalidEnum);
   std::memset(d, 0, 8);
-  d[2] = 0x08;  // scene_id 8
+  d[2] = 0x09;  // scene_id 9
   CHECK(unpack(d, s) == CodecStatus::InvalidEnum);
   std::memset(d, 0, 8);
   d[1] = 0x70;  // plant_mode 7

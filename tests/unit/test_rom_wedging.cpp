@@ -67,10 +67,10 @@ struct RunEnd {
 };
 
 template <class T>
-RunEnd run(const cvt::Scene& s) {
+RunEnd run(const cvt::Scene& s, const cvt::RomSimConfig& cfg) {
   RunEnd e{};
   double max_rho = 0;
-  e.fault = cvt::run_scene<T, kWedgeRoad>(s, cvt::sim_config_of(s), [&](long, double, const auto& sim) {
+  e.fault = cvt::run_scene<T, kWedgeRoad>(s, cfg, [&](long, double, const auto& sim) {
     const auto xs = sim.state_si();
     max_rho = std::max(max_rho, std::fabs(xs(cvt::RomLayout<kWedgeRoad>::kRho)));
     const auto o = sim.outputs();
@@ -82,6 +82,10 @@ RunEnd run(const cvt::Scene& s) {
   });
   e.max_pen_m = std::max(0.0, max_rho - s.params.radial_travel_m);
   return e;
+}
+template <class T>
+RunEnd run(const cvt::Scene& s) {
+  return run<T>(s, cvt::sim_config_of(s));
 }
 
 }  // namespace
@@ -218,16 +222,7 @@ TEST_CASE("wedging: equal thrust ratio holds the ratio, a higher primary clamp u
 TEST_CASE("wedging: energy balance closes (double and float), also against an end stop") {
   for (const double after : {3500.0, 1200.0}) {
     CAPTURE(after);
-    cvt::Scene s = ratio_scene(3300.0, after);
-    // The 1e7 N/m stop against the 2 kg radial mass rings at 2.8 ms, which
-    // one 1 ms step per frame does not resolve: the ledger's trapezoid then
-    // closes to 1.5e-3 only (docs/rom.md#wedging), two substeps to 1e-4.
-    if (after == 1200.0) {
-      const RunEnd one = run<double>(s);
-      CHECK(one.fault == cvt::RomFault::none);
-      CHECK(one.residual_rel < 5e-3);
-      s.substeps = 2;
-    }
+    const cvt::Scene s = ratio_scene(3300.0, after);
     const RunEnd d = run<double>(s);
     const RunEnd fl = run<float>(s);
     CHECK(d.fault == cvt::RomFault::none);
@@ -242,6 +237,88 @@ TEST_CASE("wedging: energy balance closes (double and float), also against an en
       CHECK(d.max_pen_m < 1e-3);
     }
   }
+}
+
+TEST_CASE("wedging: the end stop is resolved by finer steps only while the chain is on it") {
+  // docs/rom.md#end-stop: the 1e7 N/m stop against the 2 kg radial mass
+  // rings at 2.8 ms, which one 1 ms step does not resolve.
+  const cvt::Scene s = ratio_scene(3300.0, 1200.0);
+  cvt::RomSimConfig plain = cvt::sim_config_of(s);
+  plain.stop_substeps = 1;
+  const RunEnd one = run<double>(s, plain);
+  CHECK(one.fault == cvt::RomFault::none);
+  // Unresolved: the ledger closes only to about 1e-3 of the flows.
+  CHECK(one.residual_rel > 1e-4);
+  CHECK(one.residual_rel < 5e-3);
+  // The default takes the frames near the stop in 2 substeps: the ledger
+  // closes as with 2 substeps everywhere, at one step per frame off it
+  // (clamp-step with wedging: 1.13e-3 -> 3.9e-6; 3.0e-6 with 2 everywhere).
+  const cvt::RomSimConfig def = cvt::sim_config_of(s);
+  CHECK(def.stop_substeps == 2);
+  const RunEnd refined = run<double>(s, def);
+  CHECK(refined.fault == cvt::RomFault::none);
+  CHECK(refined.residual_rel < 1e-5);
+  cvt::RomSimConfig two = plain;
+  two.substeps = 2;
+  const RunEnd everywhere = run<double>(s, two);
+  CHECK(everywhere.residual_rel < 1e-5);
+  // The other way, a stop law one step resolves: 1e6 N/m rings at 8.9 ms.
+  // It closes the ledger but lets the chain well past the travel, a change
+  // of the geometry at the ratio limits (docs/rom.md#end-stop).
+  cvt::Scene soft = s;
+  soft.params.radial_stop_N_m = 1e6;
+  const RunEnd softer = run<double>(soft, plain);
+  CHECK(softer.fault == cvt::RomFault::none);
+  CHECK(softer.residual_rel < 1e-5);
+  CHECK(softer.max_pen_m > 1e-3);
+  CHECK(refined.max_pen_m < 0.5e-3);
+  MESSAGE("ledger residual / flows on clamp-step with wedging (chain on the hub stop): one step per frame ",
+          one.residual_rel, ", 2 substeps near the stop ", refined.residual_rel, ", 2 substeps everywhere ",
+          everywhere.residual_rel, "; 1e6 N/m stop at one step ", softer.residual_rel, ", deepest ",
+          softer.max_pen_m * 1e3, " mm past the travel (1e7 N/m refined: ", refined.max_pen_m * 1e3, " mm)");
+  // Only frames on the stop pay: before the clamp drop at 1 s none are.
+  cvt::RomSimulator<double, kWedgeRoad> sim(s.params, def);
+  sim.reset(s.initial, cvt::scene_inputs_at<double>(s, 0.0));
+  for (int k = 0; k < 900; ++k) sim.step_frame(cvt::scene_inputs_at<double>(s, k * 1e-3));
+  CHECK(sim.stop_refined_frames() == 0);
+  for (int k = 900; k < 5000; ++k) sim.step_frame(cvt::scene_inputs_at<double>(s, k * 1e-3));
+  CHECK(sim.fault() == cvt::RomFault::none);
+  CHECK(sim.stop_refined_frames() > 0);
+  CHECK(sim.stop_refined_frames() < 5000 - 900);
+}
+
+TEST_CASE("wedging: the driven clamping command shifts the ratio through the actuator lag, ledger closed") {
+  // docs/rom.md#driven-clamping
+  const cvt::Scene s = ratio_scene(3300.0, 3300.0);
+  const cvt::RomSimConfig cfg = cvt::sim_config_of(s);
+  cvt::RomSimulator<double, kWedgeRoad> sim(s.params, cfg);
+  CHECK(sim.driven_clamp_N() == s.params.driven_clamp_N);
+  sim.reset(s.initial, cvt::scene_inputs_at<double>(s, 0.0));
+  for (int k = 0; k < 500; ++k) sim.step_frame(cvt::scene_inputs_at<double>(s, k * 1e-3));
+  const double f0 = sim.driven_clamp_N();
+  const double f_cmd = 3900.0;
+  sim.set_driven_clamp_command(f_cmd);
+  sim.step_frame(cvt::scene_inputs_at<double>(s, 0.5));
+  // One frame of the first-order lag, exactly: F0 + (F_cmd - F0)(1 - e^(-frame/tau)).
+  const double lag = 1.0 - std::exp(-cfg.frame_s / s.params.actuator_tau_s);
+  CHECK(sim.driven_clamp_N() == doctest::Approx(f0 + (f_cmd - f0) * lag).epsilon(1e-12));
+  for (int k = 501; k < 5000; ++k) sim.step_frame(cvt::scene_inputs_at<double>(s, k * 1e-3));
+  CHECK(sim.fault() == cvt::RomFault::none);
+  CHECK(sim.driven_clamp_N() == doctest::Approx(f_cmd).epsilon(1e-9));
+  // More driven clamping: the chain moves in on the driver (downshift),
+  // towards kappa(rho) = F1 / F2.
+  const double rho = sim.state_si()(cvt::RomLayout<kWedgeRoad>::kRho);
+  CHECK(rho < -0.003);
+  cvt::CvtRom<double, kWedgeRoad> rom(s.params);
+  const double target = 3300.0 / f_cmd;
+  CHECK(std::fabs(rom.ratio_slope(rho) - target) < 0.5 * std::fabs(rom.ratio_slope(0.0) - target));
+  // The command's potential change is booked as actuator work.
+  CHECK(std::fabs(sim.energy().residual_J()) / sim.energy().scale_J() < 1e-4);
+  // Saturated like the driver's command.
+  sim.set_driven_clamp_command(-5.0);
+  CHECK(sim.driven_clamp_command_N() == 0.0);
+  sim.set_driven_clamp_command(1e9);
+  CHECK(sim.driven_clamp_command_N() == s.params.clamp_max_N);
 }
 
 TEST_CASE("wedging: a chain driven through the stop is a reported fault, not a silent state") {

@@ -181,6 +181,8 @@ void print_summary(std::FILE* out, const Options& o, const cvt::sil::Bridge& b,
                u(b.cmd_checker().lost_frames()), u(b.cmd_checker().resyncs()), u(rx.cmd_superseded));
   std::fprintf(out, "  \"cmd_timeouts\": %llu,\n  \"load_timeouts\": %llu,\n  \"cmd_timeout_reaction\": \"%s\",\n",
                u(b.cmd_timeouts()), u(b.load_timeouts()), cvt::sil::to_string(b.cmd_timeout_reaction()));
+  std::fprintf(out, "  \"shift_timeouts\": %llu,\n  \"stop_refined_frames\": %llu,\n", u(b.shift_timeouts()),
+               u(static_cast<std::uint64_t>(b.plant().stop_refined_frames())));
   std::fprintf(out, "  \"realtime\": ");
   if (!rt.ran) {
     std::fprintf(out, "null\n}\n");

@@ -4,6 +4,7 @@
 // 5 ms, and at least one per 15 ms), or with --schedule fixed every 10 ms on
 // its own clock. For the bridge's real-time mode; in lock-step, cvtplant-sil
 // runs the same ControllerNode in step with the harness.
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -18,11 +19,16 @@ namespace {
 
 const char kUsage[] =
     "usage: cvtplant-controller [--iface NAME] [--demand-Nm T] [--duration-s S] [--schedule group|fixed]\n"
+    "                           [--ratio-steps T:R[,T:R...]]\n"
     "The example clamping-force controller on SocketCAN until S seconds passed\n"
     "(0 = until SIGINT/SIGTERM). --schedule group (default): one control step per\n"
     "fresh plant output group, 5 ms apart at least, 15 ms at most; fixed: every\n"
     "10 ms of host time, whatever arrived. Prints its counters as JSON at the end,\n"
     "fresh_fraction = control steps with a fresh group / all steps.\n"
+    "--ratio-steps: ratio control (docs/sil.md#ratio-control) with the set-point R from\n"
+    "T seconds after the start (up to 8 steps, T increasing, R in [0.5, 3]); the JSON\n"
+    "then reports the largest |ratio - set-point| once a set-point has held 1 s\n"
+    "(set-points beyond the end stops, outside 0.8908..2.6498, are not judged).\n"
     "Exit 0, 1 (interface), 2 (usage).\n";
 
 [[noreturn]] void bad_usage(const char* msg, const char* v) {
@@ -41,12 +47,47 @@ double number(const char* flag, const char* v, double lo, double hi) {
   return d;
 }
 
+// --ratio-steps "T:R,T:R": set-point steps (docs/sil.md#ratio-control).
+struct RatioSteps {
+  int n = 0;
+  double t_s[8] = {}, ratio[8] = {};
+  // The set-point at t and the time it has held.
+  double at(double t, double& held_s) const {
+    int k = 0;
+    while (k + 1 < n && t >= t_s[k + 1]) ++k;
+    held_s = t - t_s[k];
+    return ratio[k];
+  }
+};
+
+RatioSteps parse_ratio_steps(const char* v) {
+  RatioSteps r;
+  const char* p = v;
+  while (*p != '\0') {
+    char* end = nullptr;
+    const double t = std::strtod(p, &end);
+    if (end == p || *end != ':' || r.n == 8) bad_usage("--ratio-steps: expected up to 8 T:R pairs, got ", v);
+    p = end + 1;
+    const double x = std::strtod(p, &end);
+    if (end == p || (*end != ',' && *end != '\0')) bad_usage("--ratio-steps: expected up to 8 T:R pairs, got ", v);
+    if (!(t >= 0 && t <= 1e6) || !(x >= 0.5 && x <= 3.0) || (r.n > 0 && !(t > r.t_s[r.n - 1])) || (r.n == 0 && t != 0))
+      bad_usage("--ratio-steps: times from 0, increasing; ratios in [0.5, 3]: ", v);
+    r.t_s[r.n] = t;
+    r.ratio[r.n] = x;
+    ++r.n;
+    p = *end == ',' ? end + 1 : end;
+  }
+  if (r.n == 0) bad_usage("--ratio-steps: expected up to 8 T:R pairs, got ", v);
+  return r;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const char* iface = "vcan0";
   double demand_Nm = 50, duration_s = 0;
   bool fixed = false;
+  RatioSteps ratio_steps;
   for (int i = 1; i < argc; ++i) {
     const char* a = argv[i];
     if (!std::strcmp(a, "-h") || !std::strcmp(a, "--help")) {
@@ -54,12 +95,14 @@ int main(int argc, char** argv) {
       return 0;
     }
     const bool known = !std::strcmp(a, "--iface") || !std::strcmp(a, "--demand-Nm") ||
-                       !std::strcmp(a, "--duration-s") || !std::strcmp(a, "--schedule");
+                       !std::strcmp(a, "--duration-s") || !std::strcmp(a, "--schedule") ||
+                       !std::strcmp(a, "--ratio-steps");
     if (!known) bad_usage("unknown option ", a);
     if (i + 1 >= argc) bad_usage("missing value for ", a);
     const char* v = argv[++i];
     if (!std::strcmp(a, "--iface")) iface = v;
     else if (!std::strcmp(a, "--demand-Nm")) demand_Nm = number(a, v, -600, 600);
+    else if (!std::strcmp(a, "--ratio-steps")) ratio_steps = parse_ratio_steps(v);
     else if (!std::strcmp(a, "--schedule")) {
       if (!std::strcmp(v, "fixed")) fixed = true;
       else if (std::strcmp(v, "group") != 0) bad_usage("--schedule: expected group or fixed, got ", v);
@@ -78,7 +121,8 @@ int main(int argc, char** argv) {
   const std::int64_t t0 = clock.now_ns();
   const auto end = t0 + static_cast<std::int64_t>(duration_s * 1e9);
   std::int64_t deadline = t0, last = t0, max_gap = 0;
-  long periods = 0;
+  long periods = 0, settled = 0;
+  double max_err = 0, max_slip = 0;
   while (!cvt::hil::stop_requested() && (duration_s == 0 || clock.now_ns() < end)) {
     std::int64_t now = clock.now_ns();
     if (fixed) {
@@ -92,7 +136,27 @@ int main(int argc, char** argv) {
       }
       node.poll(0);  // whatever else is queued: the newest group wins
     }
-    node.control_step(static_cast<float>(demand_Nm));
+    if (ratio_steps.n > 0) {
+      double held = 0;
+      const double target = ratio_steps.at(static_cast<double>(now - t0) * 1e-9, held);
+      // The group this step uses (fresh) against the set-point it had.
+      const bool fresh = node.fresh_group();
+      node.control_step_ratio(static_cast<float>(demand_Nm), static_cast<float>(target));
+      if (fresh) {
+        const double slip = std::fabs(static_cast<double>(node.ratio().slip));
+        max_slip = slip > max_slip ? slip : max_slip;
+        // Set-points beyond the travel (outside the thrust map) drive the
+        // chain onto a stop: not tracking targets.
+        const cvtctl::ThrustMap map;
+        if (held >= 1.0 && target >= map.ratio[0] && target <= map.ratio[4]) {
+          const double e = std::fabs(static_cast<double>(node.ratio().geometric_ratio) - target);
+          max_err = e > max_err ? e : max_err;
+          ++settled;
+        }
+      }
+    } else {
+      node.control_step(static_cast<float>(demand_Nm));
+    }
     if (periods > 0 && now - last > max_gap) max_gap = now - last;
     last = now;
     sched.ran(now);
@@ -106,10 +170,13 @@ int main(int argc, char** argv) {
   std::printf(
       "{\"schedule\": \"%s\", \"periods\": %ld, \"fresh_periods\": %u, \"invalid_periods\": %u, "
       "\"fresh_fraction\": %.4f, \"max_step_gap_ms\": %.3f, \"accepted\": %u, \"rejected\": %u, "
-      "\"resync_withheld\": %u, \"error_frames\": %u, \"tx_failed\": %u, \"last_clamp_cmd_N\": %.0f}\n",
+      "\"resync_withheld\": %u, \"error_frames\": %u, \"tx_failed\": %u, \"last_clamp_cmd_N\": %.0f, "
+      "\"ratio\": {\"steps\": %d, \"settled_samples\": %ld, \"max_abs_error_settled\": %.4f, "
+      "\"max_abs_slip\": %.4f, \"last_driven_clamp_cmd_N\": %.0f}}\n",
       fixed ? "fixed" : "group", periods, c.fresh_periods, c.invalid_periods,
       periods > 0 ? static_cast<double>(c.fresh_periods) / static_cast<double>(periods) : 0.0,
       static_cast<double>(max_gap) * 1e-6, c.accepted, c.rejected, c.resync_withheld, c.error_frames, c.tx_failed,
-      static_cast<double>(node.last_output().clamp_force_cmd_N));
+      static_cast<double>(node.last_output().clamp_force_cmd_N), ratio_steps.n, settled, max_err, max_slip,
+      static_cast<double>(node.last_ratio_output().driven_clamp_cmd_N));
   return 0;
 }

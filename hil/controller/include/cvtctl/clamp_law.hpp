@@ -43,18 +43,33 @@ struct ClampLawOutputs {
   float driver_torque_req_Nm = 0.0f;
 };
 
-// tau_cap = 2 mu0 F_ax r1 / cos(beta) [N m] (docs/rom.md#contact).
+// tau_cap = 2 mu0 F_ax r1 / cos(beta) [N m] at the driver's running radius
+// r1 (docs/rom.md#contact; r1 varies with the ratio, docs/sil.md#ratio-control).
+constexpr float torque_capacity_at_Nm(const ClampLawParams& p, float axial_force_N, float r1_m) {
+  return 2.0f * p.mu0 * axial_force_N * r1_m / p.cos_beta;
+}
 constexpr float torque_capacity_Nm(const ClampLawParams& p, float axial_force_N) {
-  return 2.0f * p.mu0 * axial_force_N * p.r1_m / p.cos_beta;
+  return torque_capacity_at_Nm(p, axial_force_N, p.r1_m);
 }
 
-// F_ax giving tau_cap = tau [N], the inverse of torque_capacity_Nm.
+// F_ax giving tau_cap = tau [N], the inverse of torque_capacity_at_Nm.
+constexpr float clamp_for_torque_at_N(const ClampLawParams& p, float torque_Nm, float r1_m) {
+  return torque_Nm * p.cos_beta / (2.0f * p.mu0 * r1_m);
+}
 constexpr float clamp_for_torque_N(const ClampLawParams& p, float torque_Nm) {
-  return torque_Nm * p.cos_beta / (2.0f * p.mu0 * p.r1_m);
+  return clamp_for_torque_at_N(p, torque_Nm, p.r1_m);
 }
 
 constexpr float abs_f(float v) { return v < 0.0f ? -v : v; }
 constexpr float clamp_f(float v, float lo, float hi) { return v < lo ? lo : (v > hi ? hi : v); }
+
+// Slip protection, one control period with fresh data: the extra clamping
+// decays and grows in proportion to the slip beyond the limit (bounded).
+constexpr float slip_extra_next_N(const ClampLawParams& p, float extra_N, float slip) {
+  const float excess = abs_f(slip) - p.slip_limit;
+  return clamp_f(extra_N * p.extra_decay_per_period + (excess > 0.0f ? p.slip_gain_N * excess : 0.0f), 0.0f,
+                 p.extra_max_N);
+}
 
 class ClampLaw {
  public:
@@ -71,9 +86,7 @@ class ClampLaw {
                                       p_.clamp_max_N);
       return out;
     }
-    const float excess = abs_f(in.slip) - p_.slip_limit;
-    extra_N_ = extra_N_ * p_.extra_decay_per_period + (excess > 0.0f ? p_.slip_gain_N * excess : 0.0f);
-    extra_N_ = clamp_f(extra_N_, 0.0f, p_.extra_max_N);
+    extra_N_ = slip_extra_next_N(p_, extra_N_, in.slip);
     const float a = abs_f(in.torque_demand_Nm), b = abs_f(in.torque_transmitted_Nm);
     const float tau_ref = a > b ? a : b;
     out.clamp_force_cmd_N = clamp_f(feed_forward_N(tau_ref) + extra_N_, p_.clamp_min_N, p_.clamp_max_N);

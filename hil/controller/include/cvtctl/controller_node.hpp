@@ -12,6 +12,7 @@
 #include <cstdint>
 
 #include "cvtctl/clamp_law.hpp"
+#include "cvtctl/ratio_law.hpp"
 #include "cvtplant/can/messages.hpp"
 #include "cvtplant/port/can_transport.hpp"
 
@@ -29,13 +30,15 @@ struct ControllerCounters {
 
 class ControllerNode {
  public:
-  ControllerNode(cvt::port::CanTransport& bus, const ClampLawParams& p = {}) : bus_(bus), law_(p) {}
+  ControllerNode(cvt::port::CanTransport& bus, const ClampLawParams& p = {}, const RatioLawParams& rp = {})
+      : bus_(bus), law_(p), ratio_law_(rp) {}
 
   // Start of a new run (the plant was reset): forget everything received.
   void restart() {
     rx_.reset_all();
     law_.reset();
-    have_speeds_ = have_ratio_ = have_forces_ = have_status_ = false;
+    ratio_law_.reset();
+    have_speeds_ = have_ratio_ = have_forces_ = have_status_ = have_shift_ = false;
     last_used_tag_ = -1;
   }
 
@@ -43,6 +46,7 @@ class ControllerNode {
   // again at 0 (docs/sil.md#controller-faults).
   void reboot() {
     tx_.reset();
+    tx_shift_.reset();
     restart();
   }
 
@@ -76,14 +80,56 @@ class ControllerNode {
     return send_command();
   }
 
+  // One period of ratio control (docs/sil.md#ratio-control): RatioLaw on
+  // the latest group (PlantShift included), then CtrlCmd (driver clamping,
+  // torque request) and CtrlShiftCmd (driven clamping, the set-point).
+  cvt::port::CanIoStatus control_step_ratio(float torque_demand_Nm, float ratio_target) {
+    RatioLawInputs in;
+    in.torque_demand_Nm = torque_demand_Nm;
+    in.ratio_target = ratio_target;
+    in.plant_data_valid = fresh_group() && have_shift_ && shift_.sample_tag == speeds_.sample_tag;
+    if (in.plant_data_valid) {
+      in.torque_transmitted_Nm = speeds_.torque_transmitted_Nm;
+      in.slip = ratio_.slip;
+      in.geometric_ratio = ratio_.geometric_ratio;
+      in.radius_driver_m = shift_.radius_driver_m;
+      in.on_end_stop = shift_.end_stop_underdrive || shift_.end_stop_overdrive;
+      last_used_tag_ = speeds_.sample_tag;
+      ++counters_.fresh_periods;
+    } else {
+      ++counters_.invalid_periods;
+    }
+    last_ratio_out_ = ratio_law_.step(in);
+    last_out_.clamp_force_cmd_N = last_ratio_out_.driver_clamp_cmd_N;
+    last_out_.driver_torque_req_Nm = last_ratio_out_.driver_torque_req_Nm;
+    last_ratio_target_ = ratio_target;
+    have_speeds_ = have_ratio_ = have_forces_ = have_status_ = have_shift_ = false;
+    const cvt::port::CanIoStatus st = send_command();
+    const cvt::port::CanIoStatus st2 = send_shift_command();
+    return st != cvt::port::CanIoStatus::Ok ? st : st2;
+  }
+
+  cvt::port::CanIoStatus send_shift_command() {
+    cvt::can::CtrlShiftCmd cmd;
+    cmd.driven_clamp_force_cmd_N = clamp_f(last_ratio_out_.driven_clamp_cmd_N, 0.0f, 60000.0f);
+    cmd.ratio_target = clamp_f(last_ratio_target_, 0.0f, 6.5f);
+    return send_message(cmd, tx_shift_);
+  }
+
   // The last command once more, with the next E2E counter (a controller that
   // sends faster than its cycle; the SIL flood scenario uses it).
   cvt::port::CanIoStatus send_command() {
     cvt::can::CtrlCmd cmd;
     cmd.clamp_force_cmd_N = last_out_.clamp_force_cmd_N;
     cmd.driver_torque_req_Nm = clamp_f(last_out_.driver_torque_req_Nm, -600.0f, 600.0f);
+    return send_message(cmd, tx_);
+  }
+
+  // Encodes (next E2E counter) and sends one command; failures are counted.
+  template <class Msg>
+  cvt::port::CanIoStatus send_message(const Msg& m, cvt::can::TxChannel<Msg>& ch) {
     cvt::can::CanFrame f;
-    if (tx_.encode(cmd, f) != cvt::can::CodecStatus::Ok) {
+    if (ch.encode(m, f) != cvt::can::CodecStatus::Ok) {
       ++counters_.tx_failed;
       return cvt::port::CanIoStatus::InvalidFrame;
     }
@@ -107,6 +153,8 @@ class ControllerNode {
   const cvt::can::PlantForces& forces() const { return forces_; }
   const cvt::can::PlantStatus& status() const { return status_; }
   const ClampLawOutputs& last_output() const { return last_out_; }
+  const RatioLawOutputs& last_ratio_output() const { return last_ratio_out_; }
+  const cvt::can::PlantShift& shift() const { return shift_; }
   const ClampLaw& law() const { return law_; }
   const ControllerCounters& counters() const { return counters_; }
 
@@ -123,6 +171,7 @@ class ControllerNode {
       case cvt::can::PlantSpeeds::kId:
       case cvt::can::PlantRatio::kId:
       case cvt::can::PlantForces::kId:
+      case cvt::can::PlantShift::kId:
       case cvt::can::PlantStatus::kId:
       case cvt::can::PlantDiag::kId: break;
       default: return;
@@ -144,6 +193,7 @@ class ControllerNode {
         break;
       case cvt::can::MessageId::PlantRatio: ratio_ = any_.plant_ratio; have_ratio_ = true; break;
       case cvt::can::MessageId::PlantForces: forces_ = any_.plant_forces; have_forces_ = true; break;
+      case cvt::can::MessageId::PlantShift: shift_ = any_.plant_shift; have_shift_ = true; break;
       case cvt::can::MessageId::PlantStatus: status_ = any_.plant_status; have_status_ = true; break;
       default: break;
     }
@@ -151,6 +201,12 @@ class ControllerNode {
 
   cvt::port::CanTransport& bus_;
   ClampLaw law_;
+  RatioLaw ratio_law_;
+  cvt::can::TxChannel<cvt::can::CtrlShiftCmd> tx_shift_;
+  cvt::can::PlantShift shift_{};
+  bool have_shift_ = false;
+  RatioLawOutputs last_ratio_out_{};
+  float last_ratio_target_ = 0.0f;
   cvt::can::RxBank rx_;
   cvt::can::AnyMessage any_;
   cvt::can::TxChannel<cvt::can::CtrlCmd> tx_;

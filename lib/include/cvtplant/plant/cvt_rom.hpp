@@ -427,6 +427,13 @@ class CvtRom {
   // The constants in the plant's scalar type and units (rom_constants.hpp).
   const RomConstants<T, Features>& constants() const { return c_; }
 
+  // Wedging: the driven clamping F_ax2 [N] from now on (the simulator's
+  // driven actuator sets it once per frame, docs/rom.md#driven-clamping).
+  void set_driven_clamp_N(double f_N) {
+    if constexpr (L::kWedge) c_.set_driven_clamp(f_N);
+    else (void)f_N;
+  }
+
  private:
   // derivative() without wedging, given the effective driver radius and the
   // friction characteristic phi_i of each lump at x.

@@ -36,6 +36,15 @@ struct RomConstants {
     A mr{}, cr{}, a1{}, a2{}, a3{}, two_tan_b0{}, driven_force{}, k_stop{};
   };
   Accounting acc;  // the energy ledger's copies, in the accounting type
+  double two_tan_b0_si = 0.0;  // 2 tan(beta0), set-up copy for set_driven_clamp
+
+  // The driven (secondary) clamping F_ax2 [N] the radial row and the ledger
+  // use (docs/rom.md#driven-clamping); the same products as the set-up, so
+  // the set-up value gives the same bits.
+  void set_driven_clamp(double f_N) {
+    driven_force = T(two_tan_b0_si * f_N);
+    acc.driven_force = A(two_tan_b0_si * f_N);
+  }
 
   explicit RomConstants(const RomParams& p) {
     r1 = T(p.r1_m);
@@ -111,6 +120,7 @@ struct RomConstants {
       tan2 = T(dm::sin(b2) / dm::cos(b2));
       inv_mr = T(1.0 / p.radial_mass_kg);
       cr = T(p.radial_damping_Ns_m);
+      two_tan_b0_si = 2.0 * tb;
       driven_force = T(2.0 * tb * p.driven_clamp_N);
       travel = T(p.radial_travel_m);
       k_stop = T(p.radial_stop_N_m);

@@ -26,6 +26,11 @@ struct RomSimConfig {
   // (docs/rom.md#slope-floor; the wedging plants add it to their dense W);
   // no effect on the explicit methods.
   bool w_slope_floor = true;
+  // Wedging: a frame that starts or ends on a radial end stop, or close
+  // enough to reach it within the frame, is taken with this many times the
+  // substeps, so the stop's 2.8 ms ring is resolved only where it can act
+  // (docs/rom.md#end-stop); 1 = never.
+  int stop_substeps = 2;
 };
 
 template <class T, std::uint32_t Features = 0>
@@ -45,11 +50,32 @@ class RomSimulator {
         h_acc_(Acc(c.frame_s / static_cast<double>(c.substeps < 1 ? 1 : c.substeps))),
         rel_tol_(Acc(c.energy_rel_tol)),
         abs_tol_(Acc(c.energy_abs_tol_J)),
+        driven_cmd_N_(p.driven_clamp_N),
+        driven_N_(p.driven_clamp_N),
+        // Exact discretisation of the first-order actuator over one frame:
+        // F += (F_cmd - F)(1 - exp(-frame / tau_h)) (docs/rom.md#driven-clamping).
+        driven_lag_(1.0 - dm::exp(-c.frame_s / p.actuator_tau_s)),
+        frame_(T(c.frame_s / Plant::U::time_s)),
         speed_limit_(T(p.speed_limit_rad_s)),
         resolved_speed_(T(rom_polygon_resolved_speed_rad_s(
             p, c.frame_s / static_cast<double>(c.substeps < 1 ? 1 : c.substeps)))) {
     x_.setZero();
   }
+
+  // Wedging: the driven (secondary) clamping command [N], saturated to
+  // [0, F_max] like the driver's; the driven actuator follows it with the
+  // actuator lag, one update per frame (docs/rom.md#driven-clamping). The
+  // default is the set-up value RomParams::driven_clamp_N; reset() starts
+  // the actuator at the command. No effect without wedging.
+  void set_driven_clamp_command(double f_N) {
+    const double fmax = plant_.params().clamp_max_N;
+    driven_cmd_N_ = f_N < 0.0 ? 0.0 : (f_N > fmax ? fmax : f_N);
+  }
+  double driven_clamp_command_N() const { return driven_cmd_N_; }
+  // The driven clamping force F_ax2 the plant applies now [N].
+  double driven_clamp_N() const { return driven_N_; }
+  // Frames taken again with stop_substeps (docs/rom.md#end-stop).
+  long stop_refined_frames() const { return stop_refined_; }
 
   // Starts a run. u0 sets the axial equilibrium of the initial state.
   void reset(const RomInitial& x0, const RomInputs<T>& u0) {
@@ -57,6 +83,9 @@ class RomSimulator {
     x_ = plant_.initial_state(x0);
     fault_ = RomFault::none;
     carry_.clear();
+    driven_N_ = driven_cmd_N_;
+    plant_.set_driven_clamp_N(driven_N_);
+    stop_refined_ = 0;
     ledger_ = EnergyLedger<Acc>{};
     ledger_.stored0_J = ledger_.stored_J = plant_.stored_energy(x_);
     frames_ = 0;
@@ -75,13 +104,53 @@ class RomSimulator {
     const EnergyLedger<Acc> ledger_prev = ledger_;
     const Contact contact_prev = contact_;
     const Carry carry_prev = carry_;
-    const RomFault f = integrate_frame();
-    if (f != RomFault::none) {
+    const double driven_prev = driven_N_;
+    auto roll_back = [&](RomFault why) {
       x_ = x_prev;
       ledger_ = ledger_prev;
       contact_ = contact_prev;
       carry_ = carry_prev;
-      fault_ = f;
+      driven_N_ = driven_prev;
+      plant_.set_driven_clamp_N(driven_N_);
+      fault_ = why;
+      return fault_;
+    };
+    if constexpr (Plant::Layout::kWedge) update_driven_clamp();
+    const int n = cfg_.substeps < 1 ? 1 : cfg_.substeps;
+    RomFault f = RomFault::none;
+    if constexpr (Plant::Layout::kWedge) {
+      // docs/rom.md#end-stop: a frame that starts near a stop takes the
+      // finer steps at once; one that ends near it is taken again with them.
+      const bool refine = cfg_.stop_substeps > 1;
+      if (refine && near_stop(x_prev)) {
+        f = integrate_stop(n);
+      } else {
+        f = integrate(n, h_, h_acc_);
+        if (refine && f == RomFault::none && near_stop(x_)) {
+          x_ = x_prev;
+          contact_ = contact_prev;
+          carry_ = carry_prev;
+          ledger_ = ledger_prev;
+          ledger_.actuator_J += driven_work_;
+          f = integrate_stop(n);
+        }
+      }
+    } else {
+      f = integrate(n, h_, h_acc_);
+    }
+    if (f != RomFault::none) return roll_back(f);
+    ledger_.stored_J = plant_.stored_energy(x_);
+    ++frames_;
+    // Pulleys within the model's speed range; with chordal action, a driver
+    // slow enough for the step to resolve the link passing (docs/rom.md#polygon).
+    if (abs_of(x_(Plant::Layout::kW1)) > speed_limit_ || abs_of(x_(Plant::Layout::kW2)) > speed_limit_)
+      return roll_back(RomFault::speed_out_of_range);
+    if constexpr (Plant::Layout::kPolygon) {
+      if (abs_of(x_(Plant::Layout::kW1)) > resolved_speed_) return roll_back(RomFault::step_unresolved);
+    }
+    if (cfg_.watchdog_energy) {
+      const Acc r = ledger_.residual_J();
+      if (!(r == r) || r > rel_tol_ * ledger_.scale_J() + abs_tol_) roll_back(RomFault::energy_growth);
     }
     return fault_;
   }
@@ -116,42 +185,6 @@ class RomSimulator {
   // Rounding remainders of the fixed-point increments (integrate/increment.hpp).
   using Carry = IncrementCarry<T, Plant::kStates>;
 
-  // The substeps of one frame with the ledger, then the frame's checks: the
-  // first fault, or none.
-  RomFault integrate_frame() {
-    const int n = cfg_.substeps < 1 ? 1 : cfg_.substeps;
-    RomPower<Acc> p0 = power_now();
-    for (int i = 0; i < n; ++i) {
-      advance_substep();
-      plant_.wrap(x_);
-      const RomFault f = rom_state_fault(x_);
-      if (f != RomFault::none) return f;
-      if (!plant_.radius_in_range(x_)) return RomFault::radius_out_of_range;
-      // The friction at the new state serves this power term and the next
-      // substep's Jacobian and right-hand side (docs/rom.md#cost).
-      refresh_contact();
-      // docs/rom.md#energy-balance: trapezoid on the power terms at the
-      // substep ends (inputs constant over the frame).
-      const RomPower<Acc> p1 = power_now();
-      ledger_.add_trapezoid(p0, p1, h_acc_ * Acc(0.5));
-      p0 = p1;
-    }
-    ledger_.stored_J = plant_.stored_energy(x_);
-    ++frames_;
-    // Pulleys within the model's speed range; with chordal action, a driver
-    // slow enough for the step to resolve the link passing (docs/rom.md#polygon).
-    if (abs_of(x_(Plant::Layout::kW1)) > speed_limit_ || abs_of(x_(Plant::Layout::kW2)) > speed_limit_)
-      return RomFault::speed_out_of_range;
-    if constexpr (Plant::Layout::kPolygon) {
-      if (abs_of(x_(Plant::Layout::kW1)) > resolved_speed_) return RomFault::step_unresolved;
-    }
-    if (cfg_.watchdog_energy) {
-      const Acc r = ledger_.residual_J();
-      if (!(r == r) || r > rel_tol_ * ledger_.scale_J() + abs_tol_) return RomFault::energy_growth;
-    }
-    return RomFault::none;
-  }
-
   void refresh_contact() {
     if constexpr (kContact) contact_ = plant_.contact(x_);
     contact_stale_ = false;
@@ -160,14 +193,68 @@ class RomSimulator {
     if constexpr (kContact) return plant_.power(x_, contact_);
     else return plant_.power(x_);
   }
-  void advance_substep() {
+  void advance_substep(const T& h) {
     if constexpr (kContact) {
       if (cfg_.method == Method::ros2 || cfg_.method == Method::linear_implicit_euler) {
-        rom_step_implicit(cfg_.method, plant_, x_, h_, contact_, cfg_.w_slope_floor, &carry_);
+        rom_step_implicit(cfg_.method, plant_, x_, h, contact_, cfg_.w_slope_floor, &carry_);
         return;
       }
     }
-    rom_step(cfg_.method, plant_, x_, h_, cfg_.w_slope_floor, &carry_);
+    rom_step(cfg_.method, plant_, x_, h, cfg_.w_slope_floor, &carry_);
+  }
+
+  // n substeps of h (plant time units; hacc the same in seconds), each
+  // checked, with the ledger's trapezoid on the power terms at the substep
+  // ends (inputs constant over the frame, docs/rom.md#energy-balance).
+  RomFault integrate(int n, const T& h, const Acc& hacc) {
+    RomPower<Acc> p0 = power_now();
+    for (int i = 0; i < n; ++i) {
+      advance_substep(h);
+      plant_.wrap(x_);
+      RomFault f = rom_state_fault(x_);
+      if (f == RomFault::none && !plant_.radius_in_range(x_)) f = RomFault::radius_out_of_range;
+      if (f != RomFault::none) return f;
+      // The friction at the new state serves this power term and the next
+      // substep's Jacobian and right-hand side (docs/rom.md#cost).
+      refresh_contact();
+      const RomPower<Acc> p1 = power_now();
+      ledger_.add_trapezoid(p0, p1, hacc * Acc(0.5));
+      p0 = p1;
+    }
+    return RomFault::none;
+  }
+
+  // The frame in n x stop_substeps steps (docs/rom.md#end-stop).
+  RomFault integrate_stop(int n) {
+    const int m = n * cfg_.stop_substeps;
+    const double hs = cfg_.frame_s / static_cast<double>(m);
+    ++stop_refined_;
+    return integrate(m, T(hs / Plant::U::time_s), Acc(hs));
+  }
+
+  // The chain on a radial end stop, or close enough to reach it within a
+  // frame at its present radial speed (wedging): a bounce shorter than a
+  // frame starts and ends off the stop (docs/rom.md#end-stop).
+  bool near_stop(const State& x) const {
+    using L = typename Plant::Layout;
+    const T rho = x(L::kRho), rhod = x(L::kRhoDot);
+    const T reach = (rho < T(0) ? -rho : rho) + (rhod < T(0) ? -rhod : rhod) * frame_;
+    return !(reach < plant_.constants().travel);
+  }
+
+  // docs/rom.md#driven-clamping: the driven actuator's frame update. The
+  // driven clamping acts on the chain as a potential, -2 tan(beta0) F_ax2
+  // (r2 - r2_m); changing F_ax2 at a fixed state changes that potential by
+  // exactly the work the actuator books here, so the ledger stays closed.
+  void update_driven_clamp() {
+    driven_work_ = Acc(0);
+    const double next = driven_N_ + (driven_cmd_N_ - driven_N_) * driven_lag_;
+    if (next == driven_N_) return;
+    const Acc before = plant_.stored_energy(x_);
+    driven_N_ = next;
+    plant_.set_driven_clamp_N(driven_N_);
+    driven_work_ = plant_.stored_energy(x_) - before;
+    ledger_.actuator_J += driven_work_;
   }
   static T abs_of(const T& v) { return v < T(0) ? -v : v; }
 
@@ -181,9 +268,13 @@ class RomSimulator {
   EnergyLedger<Acc> ledger_{};
   Contact contact_{};
   Carry carry_{};
-  T speed_limit_, resolved_speed_;
   bool contact_stale_ = true;
   long frames_ = 0;
+  double driven_cmd_N_, driven_N_, driven_lag_;
+  T frame_;  // one frame in the plant's time unit
+  Acc driven_work_{};
+  long stop_refined_ = 0;
+  T speed_limit_, resolved_speed_;
 };
 
 }  // namespace cvt

@@ -50,6 +50,11 @@ class IRomSimulator {
   virtual void state_si(double* x) const = 0;
   // Places the plant (tests, harnesses); the next frame starts from x.
   virtual void set_state(const T* x) = 0;
+  // Wedging: the driven clamping command and force [N], and the frames taken
+  // with the end stop's finer steps (docs/rom.md#driven-clamping, #end-stop).
+  virtual void set_driven_clamp_command(double f_N) = 0;
+  virtual double driven_clamp_N() const = 0;
+  virtual long stop_refined_frames() const = 0;
 
   // --- the plant on a caller's state, with the inputs of set_inputs ---
   virtual void set_inputs(const RomInputs<T>& u) = 0;
@@ -97,6 +102,9 @@ class ErasedRomSimulator final : public IRomSimulator<T> {
     out = sim_.state_si();
   }
   void set_state(const T* x) override { sim_.mutable_state() = cmap(x); }
+  void set_driven_clamp_command(double f_N) override { sim_.set_driven_clamp_command(f_N); }
+  double driven_clamp_N() const override { return sim_.driven_clamp_N(); }
+  long stop_refined_frames() const override { return sim_.stop_refined_frames(); }
 
   void set_inputs(const RomInputs<T>& u) override { sim_.mutable_plant().inputs = u; }
   void initial_state(const RomInitial& x0, T* x) const override { map(x) = sim_.plant().initial_state(x0); }

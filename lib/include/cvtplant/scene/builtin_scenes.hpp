@@ -106,6 +106,21 @@ constexpr Scene gross_slip() {
   return s;
 }
 
+constexpr Scene ratio_control() {
+  Scene s;
+  s.name = "ratio-control";
+  s.summary = "variable ratio (wedging) at 60 N m and 3.3 kN primary clamping, road load: the plant for ratio control over CAN";
+  s.features = rom_feature::axial | rom_feature::road_load | rom_feature::wedging;
+  s.params.friction = friction_presets::table2_case1<double>();
+  road(s);
+  s.initial.omega1_rad_s = 150.0;
+  s.initial.omega2_rad_s = 100.0;
+  s.tau_in = constant_profile(60.0);
+  s.clamp = constant_profile(3300.0);
+  s.t_end_s = 10.0;
+  return s;
+}
+
 }  // namespace builtin_detail
 
 inline constexpr Scene kBuiltinScenes[] = {
@@ -120,6 +135,7 @@ inline constexpr Scene kBuiltinScenes[] = {
     builtin_detail::clamp_step(),
     builtin_detail::tip_in(),
     builtin_detail::gross_slip(),
+    builtin_detail::ratio_control(),
 };
 inline constexpr int kBuiltinSceneCount = static_cast<int>(sizeof(kBuiltinScenes) / sizeof(kBuiltinScenes[0]));
 

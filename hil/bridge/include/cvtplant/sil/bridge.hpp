@@ -82,6 +82,7 @@ inline const Scene* builtin_scene_for(can::SceneId id) {
     case can::SceneId::ClampStep: return find_builtin_scene("clamp-step");
     case can::SceneId::TipIn: return find_builtin_scene("tip-in");
     case can::SceneId::GrossSlip: return find_builtin_scene("gross-slip");
+    case can::SceneId::RatioControl: return find_builtin_scene("ratio-control");
     case can::SceneId::Keep: break;
   }
   return nullptr;
@@ -188,6 +189,15 @@ class Bridge {
   can::PlantMode mode() const noexcept { return mode_; }
   CmdState cmd_state() const noexcept { return cmd_state_; }
   const can::CtrlCmd& command() const noexcept { return cmd_; }
+  CmdState shift_state() const noexcept { return shift_state_; }
+  const can::CtrlShiftCmd& shift_command() const noexcept { return shift_; }
+  std::uint64_t shift_timeouts() const noexcept { return shift_timeouts_; }
+  // The driven (secondary) clamping command the next frame uses: the last
+  // CtrlShiftCmd (or its timeout ramp), else the scene's set-up value.
+  double driven_command() const {
+    if (shift_state_ == CmdState::NoneYet) return plant_.scene()->params.driven_clamp_N;
+    return shift_.driven_clamp_force_cmd_N;
+  }
   // The inputs the next frame will use.
   RomInputs<double> current_inputs() const {
     RomInputs<double> u;
@@ -221,6 +231,7 @@ class Bridge {
  private:
   static constexpr std::int64_t kCmdTimeout_ns = std::int64_t{can::CtrlCmd::kRxTimeout_ms} * 1000000;
   static constexpr std::int64_t kLoadTimeout_ns = std::int64_t{can::HarnessLoad::kRxTimeout_ms} * 1000000;
+  static constexpr std::int64_t kShiftTimeout_ns = std::int64_t{can::CtrlShiftCmd::kRxTimeout_ms} * 1000000;
 
   void restart() {
     plant_.reset();
@@ -228,6 +239,9 @@ class Bridge {
     cmd_state_ = CmdState::NoneYet;
     cmd_ = can::CtrlCmd{};
     load_ = can::HarnessLoad{};
+    shift_state_ = CmdState::NoneYet;
+    shift_ = can::CtrlShiftCmd{};
+    shift_monitor_ = false;
     cmd_monitor_ = load_monitor_ = false;
     load_timed_out_ = false;
     drain_cmd_ = drain_load_ = false;
@@ -235,6 +249,7 @@ class Bridge {
     // A new run may restart its counters at 0 (docs/sil.md#lock-step).
     rxbank_.reset(can::MessageId::CtrlCmd);
     rxbank_.reset(can::MessageId::HarnessLoad);
+    rxbank_.reset(can::MessageId::CtrlShiftCmd);
     const std::int64_t cycle_ns = std::int64_t{can::PlantSpeeds::kCycleTime_ms} * 1000000;
     const std::int64_t slow_ns = std::int64_t{can::PlantStatus::kCycleTime_ms} * 1000000;
     fast_cycle_frames_ = cycle_ns / plant_.frame_ns() < 1 ? 1 : cycle_ns / plant_.frame_ns();
@@ -277,6 +292,18 @@ class Bridge {
       cmd_timeout_since_status_ = true;
       drain_cmd_ = mode_ == can::PlantMode::RealTime;
     }
+    // CtrlShiftCmd: monitored from its first accepted frame (a controller of
+    // a fixed-ratio plant need not send it); the same reactions as CtrlCmd,
+    // from the driven command the plant applies now (docs/sil.md#ratio-control).
+    if (shift_monitor_ && shift_state_ != CmdState::TimedOut && now - shift_last_ns_ >= kShiftTimeout_ns) {
+      shift_.driven_clamp_force_cmd_N = static_cast<float>(driven_command());
+      if (cmd_reaction_ == CmdTimeoutReaction::Dbc) shift_ = can::on_rx_timeout(shift_);
+      shift_state_ = CmdState::TimedOut;
+      rxbank_.require_resync(can::MessageId::CtrlShiftCmd);
+      ++shift_timeouts_;
+      cmd_timeout_since_status_ = true;
+      drain_cmd_ = mode_ == can::PlantMode::RealTime;
+    }
     if (load_monitor_ && !load_timed_out_ && now - load_last_ns_ >= kLoadTimeout_ns) {
       load_ = can::on_rx_timeout(load_);
       load_timed_out_ = true;
@@ -297,7 +324,10 @@ class Bridge {
     // first timed-out frame already moves by one rate step, never by more.
     if (cmd_state_ == CmdState::TimedOut && cmd_reaction_ == CmdTimeoutReaction::Dbc)
       cmd_ = can::rx_timeout_ramp(cmd_, static_cast<float>(static_cast<double>(plant_.frame_ns()) * 1e-9));
+    if (shift_state_ == CmdState::TimedOut && cmd_reaction_ == CmdTimeoutReaction::Dbc)
+      shift_ = can::rx_timeout_ramp(shift_, static_cast<float>(static_cast<double>(plant_.frame_ns()) * 1e-9));
     cmd_unused_ = false;
+    plant_.set_driven_clamp_command(driven_command());
     if (plant_.step(current_inputs()) != RomFault::none) mode_ = can::PlantMode::Fault;
   }
 
@@ -322,7 +352,7 @@ class Bridge {
   static bool is_plant_output(std::uint32_t id) {
     return id == can::PlantSpeeds::kId || id == can::PlantRatio::kId || id == can::PlantForces::kId ||
            id == can::PlantStatus::kId || id == can::PlantDiag::kId || id == can::PlantBusDiag::kId ||
-           id == can::PlantCmdDiag::kId;
+           id == can::PlantCmdDiag::kId || id == can::PlantShift::kId;
   }
 
   void handle_io(port::CanIoStatus st, const can::CanFrame& f, bool draining) {
@@ -342,7 +372,7 @@ class Bridge {
     // Frames queued while a command timed out are stale by definition: the
     // E2E counter cannot tell a replayed burst from fresh data, so they are
     // dropped before anything can apply them (docs/can.md#timeouts).
-    if (draining && ((drain_cmd_ && f.id == can::CtrlCmd::kId) || (drain_load_ && f.id == can::HarnessLoad::kId))) {
+    if (draining && ((drain_cmd_ && (f.id == can::CtrlCmd::kId || f.id == can::CtrlShiftCmd::kId)) || (drain_load_ && f.id == can::HarnessLoad::kId))) {
       ++rx_.stale_discarded;
       return;
     }
@@ -361,6 +391,12 @@ class Bridge {
         cmd_state_ = CmdState::Valid;
         cmd_monitor_ = true;
         cmd_last_ns_ = deadline_now();
+        break;
+      case can::MessageId::CtrlShiftCmd:
+        shift_ = any_.ctrl_shift_cmd;
+        shift_state_ = CmdState::Valid;
+        shift_monitor_ = true;
+        shift_last_ns_ = deadline_now();
         break;
       case can::MessageId::HarnessLoad:
         load_ = any_.harness_load;
@@ -445,8 +481,8 @@ class Bridge {
     return false;
   }
 
-  // docs/can.md#layout "Output groups": Speeds, Ratio, Forces, [Diag,
-  // BusDiag, CmdDiag,] Status.
+  // docs/can.md#layout "Output groups": Speeds, Ratio, Forces, [Shift,]
+  // [Diag, BusDiag, CmdDiag,] Status.
   // In real time the 100 ms frames (the diagnostics, Status) go out only on
   // every tenth 10 ms group, as the DBC cycle times say; there step_seq_ack
   // is 0 because no request is being acknowledged.
@@ -466,10 +502,24 @@ class Bridge {
     send(sp, tx_speeds_);
     can::PlantRatio ra{tag, f(o.speed_ratio), f(o.geometric_ratio), f(o.slip)};
     send(ra, tx_ratio_);
-    // The ROM has one lumped clamping force (docs/rom.md#axial): both
-    // signals carry it.
-    can::PlantForces fo{tag, f(o.clamp_force_N), f(o.clamp_force_N)};
+    // Without wedging the ROM has one lumped clamping force (docs/rom.md#axial),
+    // which both signals carry; with it the driven actuator's own force.
+    const double driven_N = plant_.variable_ratio() ? plant_.driven_clamp_N() : o.clamp_force_N;
+    can::PlantForces fo{tag, f(o.clamp_force_N), f(driven_N)};
     send(fo, tx_forces_);
+    // PlantShift only from a plant with a variable ratio (docs/can.md#layout):
+    // a fixed-ratio plant's radii are constants.
+    if (plant_.variable_ratio()) {
+      const RomParams& p = plant_.scene()->params;
+      const double rho = o.radius1_m - p.r1_m;
+      can::PlantShift sh{};
+      sh.sample_tag = tag;
+      sh.radius_driver_m = f(o.radius1_m);
+      sh.radius_driven_m = f(o.radius2_m);
+      sh.end_stop_underdrive = rho < -p.radial_travel_m;
+      sh.end_stop_overdrive = rho > p.radial_travel_m;
+      send(sh, tx_shift_);
+    }
     if (with_diag) {
       // Counters wrap modulo 2^16 by design (docs/can.md#layout).
       can::PlantDiag d;
@@ -499,7 +549,8 @@ class Bridge {
     s.plant_mode = plant_.fault() != RomFault::none ? can::PlantMode::Fault : mode_;
     s.sim_time_us = static_cast<std::uint32_t>(static_cast<std::uint64_t>(sim_ns() / 1000));
     s.fault_watchdog = plant_.fault() != RomFault::none;
-    s.fault_cmd_timeout = cmd_state_ == CmdState::TimedOut || cmd_timeout_since_status_;
+    s.fault_cmd_timeout =
+        cmd_state_ == CmdState::TimedOut || shift_state_ == CmdState::TimedOut || cmd_timeout_since_status_;
     s.fault_load_timeout = load_timed_out_ || load_timeout_since_status_;
     s.fault_rt_overrun = overrun_since_status_;
     s.fault_bus_error = bus_error_since_status_ || bus_.bus_state() != port::CanBusState::ErrorActive;
@@ -528,6 +579,7 @@ class Bridge {
   can::TxChannel<can::PlantSpeeds> tx_speeds_;
   can::TxChannel<can::PlantRatio> tx_ratio_;
   can::TxChannel<can::PlantForces> tx_forces_;
+  can::TxChannel<can::PlantShift> tx_shift_;
   can::TxChannel<can::PlantStatus> tx_status_;
   can::TxChannel<can::PlantDiag> tx_diag_;
   can::TxChannel<can::PlantBusDiag> tx_bus_diag_;
@@ -538,6 +590,11 @@ class Bridge {
   CmdState cmd_state_ = CmdState::NoneYet;
   can::CtrlCmd cmd_{};
   can::HarnessLoad load_{};
+  CmdState shift_state_ = CmdState::NoneYet;
+  can::CtrlShiftCmd shift_{};
+  bool shift_monitor_ = false;
+  std::int64_t shift_last_ns_ = 0;
+  std::uint64_t shift_timeouts_ = 0;
   bool cmd_monitor_ = false, load_monitor_ = false, load_timed_out_ = false;
   bool drain_cmd_ = false, drain_load_ = false;
   bool cmd_unused_ = false;  // a used CtrlCmd no plant frame has applied yet

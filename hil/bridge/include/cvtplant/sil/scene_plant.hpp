@@ -4,6 +4,7 @@
 // storage this object owns, without the heap.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
 #include "cvtplant/scene/all_plants.hpp"
@@ -32,6 +33,8 @@ class ScenePlant {
   // inputs at t = 0 (docs/rom.md#axial).
   void reset() {
     if (scene_ == nullptr) return;
+    // A new run starts the driven actuator at the scene's set-up value.
+    sim_.sim().set_driven_clamp_command(scene_->params.driven_clamp_N);
     sim_.sim().reset(scene_->initial, scene_inputs_at<double>(*scene_, 0.0));
   }
 
@@ -39,6 +42,22 @@ class ScenePlant {
   RomOutputs<double> outputs() const { return loaded() ? sim_.sim().outputs() : RomOutputs<double>{}; }
   RomFault fault() const { return loaded() ? sim_.sim().fault() : RomFault::none; }
   long frames() const { return loaded() ? sim_.sim().frames() : 0; }
+
+  // Wedging: the driven (secondary) clamping command, the force the driven
+  // actuator applies, frames taken with the end stop's finer steps
+  // (docs/rom.md#driven-clamping, #end-stop); the set-up value before the first.
+  void set_driven_clamp_command(double f_N) {
+    if (loaded()) sim_.sim().set_driven_clamp_command(f_N);
+  }
+  double driven_clamp_N() const { return loaded() ? sim_.sim().driven_clamp_N() : 0.0; }
+  long stop_refined_frames() const { return loaded() ? sim_.sim().stop_refined_frames() : 0; }
+  // The energy ledger's residual over its flows (docs/rom.md#energy-balance).
+  double energy_residual_rel() const {
+    if (!loaded()) return 0.0;
+    const auto& e = sim_.sim().energy();
+    return e.scale_J() > 0.0 ? std::fabs(e.residual_J()) / e.scale_J() : 0.0;
+  }
+  bool variable_ratio() const { return loaded() && (scene_->features & rom_feature::wedging) != 0; }
 
   bool loaded() const { return scene_ != nullptr; }
   const Scene* scene() const { return scene_; }
