@@ -1,10 +1,12 @@
 #include "cvtplant/analysis/csv.hpp"
 
+#include <sys/stat.h>
+
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
+#include <cstdio>
 
 #include "cvtplant/analysis/errors.hpp"
 
@@ -42,16 +44,67 @@ char detect_separator(const std::string& header) {
   return ',';
 }
 
+// A cell or name for a message: at most 40 characters, control characters
+// shown as '?', so a 50 MB cell is never echoed back.
+std::string shown(const std::string& text) {
+  constexpr std::size_t kMax = 40;
+  std::string out = text.substr(0, kMax);
+  for (char& c : out)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  if (text.size() <= kMax) return "'" + out + "'";
+  return "'" + out + "...' (" + std::to_string(text.size()) + " characters)";
+}
+
+// Lines of a file, with a cap on the bytes read (0: none). Refuses
+// directories and devices: only regular files and pipes hold a CSV.
+class LineReader {
+ public:
+  LineReader(const std::string& path, std::size_t max_bytes) : path_(path), max_bytes_(max_bytes) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) throw InputError("cannot read " + shown(path) + ": " + std::strerror(errno));
+    if (S_ISDIR(st.st_mode)) throw InputError(shown(path) + " is a directory, not a CSV file");
+    if (!S_ISREG(st.st_mode) && !S_ISFIFO(st.st_mode))
+      throw InputError(shown(path) + " is not a regular file or a pipe");
+    f_ = std::fopen(path.c_str(), "rb");
+    if (f_ == nullptr) throw InputError("cannot read " + shown(path) + ": " + std::strerror(errno));
+  }
+  ~LineReader() { std::fclose(f_); }
+  LineReader(const LineReader&) = delete;
+  LineReader& operator=(const LineReader&) = delete;
+
+  bool getline(std::string& line) {
+    line.clear();
+    int c = 0;
+    bool any = false;
+    while ((c = getc_unlocked(f_)) != EOF) {
+      any = true;
+      if (max_bytes_ != 0 && ++read_ > max_bytes_)
+        throw LimitError(shown(path_) + " is larger than the read cap of " + std::to_string(max_bytes_) + " bytes",
+                         static_cast<double>(read_));
+      if (c == '\n') return true;
+      line.push_back(static_cast<char>(c));
+    }
+    if (std::ferror(f_)) throw InputError("reading " + shown(path_) + " failed: " + std::strerror(errno));
+    return any;
+  }
+
+ private:
+  std::string path_;
+  std::size_t max_bytes_;
+  std::size_t read_ = 0;
+  std::FILE* f_ = nullptr;
+};
+
 struct Header {
   std::vector<std::string> names;
   char sep = ',';
   long line_no = 0;
 };
 
-Header read_header(std::ifstream& in, const std::string& path) {
+Header read_header(LineReader& in, const std::string& path) {
   Header h;
   std::string line;
-  while (std::getline(in, line)) {
+  while (in.getline(line)) {
     ++h.line_no;
     if (skip_line(line)) continue;
     h.sep = detect_separator(line);
@@ -64,14 +117,12 @@ Header read_header(std::ifstream& in, const std::string& path) {
 }  // namespace
 
 std::vector<std::string> read_csv_header(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError("cannot read '" + path + "': " + std::strerror(errno));
+  LineReader in(path, 0);
   return read_header(in, path).names;
 }
 
-CsvColumn read_csv_column(const std::string& path, const std::string& column) {
-  std::ifstream in(path);
-  if (!in) throw InputError("cannot read '" + path + "': " + std::strerror(errno));
+CsvColumn read_csv_column(const std::string& path, const std::string& column, std::size_t max_bytes) {
+  LineReader in(path, max_bytes);
   const Header h = read_header(in, path);
   std::size_t col = h.names.size();
   for (std::size_t i = 0; i < h.names.size(); ++i)
@@ -82,13 +133,16 @@ CsvColumn read_csv_column(const std::string& path, const std::string& column) {
   if (col == h.names.size()) {
     std::string have;
     for (const auto& n : h.names) have += (have.empty() ? "" : ", ") + n;
-    throw InputError(path + ": no column '" + column + "' (columns: " + have + ")");
+    if (have.size() > 400) have = have.substr(0, 400) + "...";
+    for (char& c : have)
+      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    throw InputError(path + ": no column " + shown(column) + " (columns: " + have + ")");
   }
   CsvColumn out;
   out.name = column;
   std::string line;
   long line_no = h.line_no;
-  while (std::getline(in, line)) {
+  while (in.getline(line)) {
     ++line_no;
     if (skip_line(line)) continue;
     const std::vector<std::string> cells = split(line, h.sep);
@@ -102,10 +156,10 @@ CsvColumn read_csv_column(const std::string& path, const std::string& column) {
     errno = 0;
     const double v = std::strtod(s, &end);
     if (cell.empty() || end == s || *end != '\0')
-      throw InputError(where + ": column '" + column + "': '" + cell + "' is not a number");
+      throw InputError(where + ": column '" + column + "': " + shown(cell) + " is not a number");
     if (std::isnan(v)) throw InputError(where + ": column '" + column + "': NaN is not allowed");
     if (!std::isfinite(v) || errno == ERANGE)
-      throw InputError(where + ": column '" + column + "': '" + cell + "' is not a finite number");
+      throw InputError(where + ": column '" + column + "': " + shown(cell) + " is not a finite number");
     out.values.push_back(v);
   }
   if (out.values.empty()) throw InputError(path + ": column '" + column + "' has no data rows");

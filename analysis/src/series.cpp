@@ -8,17 +8,44 @@
 
 namespace cvt::analysis {
 
-double mean(const std::vector<double>& x) {
+namespace {
+
+// 2^-e with 2^(e-1) <= max |x| < 2^e (1 for an all-zero series). Multiplying
+// by a power of two is exact, so the statistics below are computed on
+// x * 2^-e, whose magnitudes are below 1: squares and sums cannot overflow
+// (1e300) or underflow (1e-300) whatever the series' scale, and for series of
+// ordinary scale the results are bit for bit those of the plain formulas.
+double pow2_normaliser(const std::vector<double>& x) {
+  double peak = 0;
+  for (double v : x) peak = std::max(peak, std::abs(v));
+  if (!(peak > 0) || !std::isfinite(peak)) return 1.0;
+  int e = 0;
+  std::frexp(peak, &e);
+  return std::ldexp(1.0, -e);
+}
+
+double scaled_mean(const std::vector<double>& x, double k) {
   double s = 0;
-  for (double v : x) s += v;
+  for (double v : x) s += v * k;
   return x.empty() ? 0.0 : s / static_cast<double>(x.size());
 }
 
-double stddev(const std::vector<double>& x) {
-  const double m = mean(x);
+double scaled_stddev(const std::vector<double>& x, double k, double m_scaled) {
   double s = 0;
-  for (double v : x) s += (v - m) * (v - m);
+  for (double v : x) s += (v * k - m_scaled) * (v * k - m_scaled);
   return x.empty() ? 0.0 : std::sqrt(s / static_cast<double>(x.size()));
+}
+
+}  // namespace
+
+double mean(const std::vector<double>& x) {
+  const double k = pow2_normaliser(x);
+  return scaled_mean(x, k) / k;
+}
+
+double stddev(const std::vector<double>& x) {
+  const double k = pow2_normaliser(x);
+  return scaled_stddev(x, k, scaled_mean(x, k)) / k;
 }
 
 void validate_series(const std::vector<double>& x, std::size_t min_points, const std::string& what) {
@@ -34,11 +61,14 @@ void validate_series(const std::vector<double>& x, std::size_t min_points, const
     throw InputError(what + ": series is constant (std " + std::to_string(s) + ")");
 }
 
+// In the normalised units of pow2_normaliser: the z-scores are scale-free,
+// so a series and the same series times 1e300 give the same z-scores.
 std::vector<double> zscore(const std::vector<double>& x) {
-  const double m = mean(x), s = stddev(x);
+  const double k = pow2_normaliser(x);
+  const double m = scaled_mean(x, k), s = scaled_stddev(x, k, m);
   if (!(s > 0)) throw InputError("series is constant");
   std::vector<double> out(x.size());
-  for (std::size_t i = 0; i < x.size(); ++i) out[i] = (x[i] - m) / s;
+  for (std::size_t i = 0; i < x.size(); ++i) out[i] = (x[i] * k - m) / s;
   return out;
 }
 

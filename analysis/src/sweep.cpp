@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -53,16 +54,25 @@ std::string SweepSpec::signature() const {
 
 namespace {
 
-// Local maxima of a sampled signal, refined by a parabola through 3 samples.
-std::vector<double> local_maxima(const std::vector<double>& rows, int dim, int state, int max_peaks) {
+// Local maxima of one state (docs/analysis.md#sweep-peaks). A map's iterates
+// are the orbit itself, not samples of a curve: the iterate is the peak (a
+// parabola through three unrelated iterates put the logistic map's peaks
+// above its maximum, 1.02 > 1). A flow's samples bracket its peak, refined by
+// the parabola through the three samples around it; with b above both
+// neighbours the vertex is within half a step of b and above it by at most
+// 1/8 of the larger drop, (b - min(a, c)) / 8.
+std::vector<double> local_maxima(const std::vector<double>& rows, int dim, int state, int max_peaks, bool is_map) {
   std::vector<double> out;
   const std::size_t n = rows.size() / dim;
   for (std::size_t i = 1; i + 1 < n && static_cast<int>(out.size()) < max_peaks; ++i) {
     const double a = rows[(i - 1) * dim + state], b = rows[i * dim + state], c = rows[(i + 1) * dim + state];
-    if (b > a && b >= c) {
-      const double den = a - 2 * b + c;
-      out.push_back(den != 0 ? b - 0.125 * (a - c) * (a - c) / den : b);
+    if (!(b > a && b >= c)) continue;
+    if (is_map) {
+      out.push_back(b);
+      continue;
     }
+    const double den = a - 2 * b + c;  // < 0: b is above both neighbours
+    out.push_back(den < 0 ? b - 0.125 * (a - c) * (a - c) / den : b);
   }
   return out;
 }
@@ -74,6 +84,14 @@ std::vector<SweepPoint> run_sweep(const SweepSpec& spec, int shard_i, int shard_
   if (shard_n < 1 || shard_i < 0 || shard_i >= shard_n) throw InputError("shard must be i/N with 0 <= i < N");
   if (spec.bif_state < 0 || spec.bif_state >= scene.dim)
     throw InputError("state index must be in 0.." + std::to_string(scene.dim - 1));
+  // Each axis labels its own column of the output: two axes on one
+  // parameter, or an override of a swept parameter, would label values that
+  // were never used.
+  if (spec.has_a2 && spec.a2.param == spec.a1.param)
+    throw InputError("the second axis sweeps '" + spec.a1.param + "' too: give two different parameters");
+  for (const SweepAxis* ax : {&spec.a1, spec.has_a2 ? &spec.a2 : nullptr})
+    if (ax != nullptr && spec.overrides.count(ax->param) != 0)
+      throw InputError("'" + ax->param + "' is swept: it cannot also be a fixed override");
   Params base = merge_params(scene, spec.overrides);
   // Axis parameters must exist too (merge_params throws otherwise).
   merge_params(scene, {{spec.a1.param, spec.a1.lo}});
@@ -106,7 +124,7 @@ std::vector<SweepPoint> run_sweep(const SweepSpec& spec, int shard_i, int shard_
         pt.ci95 = r.ci95;
         const std::vector<double> rows =
             scene.trajectory(p, r.x_final, spec.benettin.dt, 0.0, spec.t_peaks, spec.benettin.dt);
-        pt.peaks = local_maxima(rows, scene.dim, spec.bif_state, spec.max_peaks);
+        pt.peaks = local_maxima(rows, scene.dim, spec.bif_state, spec.max_peaks, scene.is_map);
         if (pt.peaks.empty() && !rows.empty()) pt.peaks.push_back(rows[rows.size() - scene.dim + spec.bif_state]);
       } catch (const std::exception& e) {
         pt.error = e.what();
@@ -140,11 +158,50 @@ void write_sweep_csv(std::FILE* f, const SweepSpec& spec, int dim, const std::ve
   }
 }
 
+namespace {
+
+// The number of points a shard signature declares, checked against its axes
+// (total = n1 * n2): a shard is input like any other file, and a forged or
+// damaged total must be refused, not trusted (the merge walks 0..total-1).
+long signature_total(const std::string& sig, const std::string& path) {
+  auto bad = [&](const std::string& why) { return InputError("merge: '" + path + "': signature " + why); };
+  // n of the axis token "aK=name:lo:hi:n" at `at`: its last ':' field. The
+  // signature lists " a1=..." after the scene and " a2=..." right after it.
+  auto axis_n = [&](std::size_t at, std::size_t& stop) -> long {
+    stop = sig.find(' ', at + 1);
+    const std::string tok = sig.substr(at + 1, stop == std::string::npos ? std::string::npos : stop - at - 1);
+    const std::size_t colon = tok.rfind(':');
+    const std::string n = colon == std::string::npos ? "" : tok.substr(colon + 1);
+    if (n.empty() || n.size() > 6 || n.find_first_not_of("0123456789") != std::string::npos)
+      throw bad("has a bad axis size in '" + tok + "'");
+    const long v = std::stol(n);
+    if (v < 1 || v > 100000) throw bad("has an axis size outside 1..100000 in '" + tok + "'");
+    return v;
+  };
+  const std::size_t a1 = sig.find(" a1=");
+  if (a1 == std::string::npos) throw bad("lacks a1=");
+  std::size_t stop = 0;
+  long expected = axis_n(a1, stop);
+  if (stop != std::string::npos && sig.compare(stop, 4, " a2=") == 0) expected *= axis_n(stop, stop);
+  const std::size_t t = sig.rfind(" total=");
+  if (t == std::string::npos) throw bad("lacks total=");
+  const std::string digits = sig.substr(t + 7);
+  if (digits.empty() || digits.size() > 18 || digits.find_first_not_of("0123456789") != std::string::npos)
+    throw bad("has a malformed total '" + digits + "'");
+  const long total = std::stol(digits);
+  if (total != expected)
+    throw bad("declares total=" + digits + " but its axes give " + std::to_string(expected) + " points");
+  return total;
+}
+
+}  // namespace
+
 void merge_sweep_csv(const std::vector<std::string>& shards, std::FILE* out) {
   if (shards.empty()) throw InputError("merge: no shard files given");
   std::string signature, header;
   std::map<long, std::string> rows;
   long total = -1;
+  std::size_t columns = 0;
   for (const auto& path : shards) {
     std::ifstream in(path);
     if (!in) throw InputError("merge: cannot read '" + path + "'");
@@ -153,36 +210,46 @@ void merge_sweep_csv(const std::vector<std::string>& shards, std::FILE* out) {
       throw InputError("merge: '" + path + "' is not a sweep shard (missing '# cvtplant sweep' line)");
     if (!std::getline(in, head)) throw InputError("merge: '" + path + "' has no header row");
     if (signature.empty()) {
+      total = signature_total(sig, path);
       signature = sig;
       header = head;
-      const std::size_t t = sig.rfind("total=");
-      total = t == std::string::npos ? -1 : std::atol(sig.c_str() + t + 6);
+      columns = static_cast<std::size_t>(std::count(head.begin(), head.end(), ',')) + 1;
     } else if (sig != signature) {
       throw InputError("merge: '" + path + "' comes from a different sweep ('" + sig.substr(17) + "' vs '" +
                        signature.substr(17) + "')");
+    } else if (head != header) {
+      throw InputError("merge: '" + path + "' has another header row than '" + shards.front() + "'");
     }
     long line_no = 2;
     while (std::getline(in, line)) {
       ++line_no;
       if (line.empty()) continue;
+      const std::string where = path + ":" + std::to_string(line_no);
       char* end = nullptr;
+      errno = 0;
       const long idx = std::strtol(line.c_str(), &end, 10);
-      if (end == line.c_str() || *end != ',')
-        throw InputError("merge: " + path + ":" + std::to_string(line_no) + ": bad row");
+      if (end == line.c_str() || *end != ',' || errno != 0) throw InputError("merge: " + where + ": bad row");
+      if (idx < 0 || idx >= total)
+        throw InputError("merge: " + where + ": point " + std::to_string(idx) + " is outside 0.." +
+                         std::to_string(total - 1));
+      if (static_cast<std::size_t>(std::count(line.begin(), line.end(), ',')) + 1 != columns)
+        throw InputError("merge: " + where + ": " + std::to_string(std::count(line.begin(), line.end(), ',') + 1) +
+                         " columns, the header has " + std::to_string(columns));
       if (!rows.emplace(idx, line).second)
         throw InputError("merge: point " + std::to_string(idx) + " appears twice (" + path + ")");
     }
   }
-  if (total < 0) throw InputError("merge: shard signature lacks total=");
-  std::string missing;
-  long n_missing = 0;
-  for (long k = 0; k < total; ++k)
-    if (!rows.count(k)) {
-      if (++n_missing <= 10) missing += (missing.empty() ? "" : ",") + std::to_string(k);
-    }
-  if (n_missing > 0)
+  // Every index is in 0..total-1 and unique, so the count says how many are
+  // missing; the first few are found within rows.size() + 10 probes.
+  const long n_missing = total - static_cast<long>(rows.size());
+  if (n_missing > 0) {
+    std::string missing;
+    int listed = 0;
+    for (long k = 0; k < total && listed < 10; ++k)
+      if (!rows.count(k)) missing += (listed++ ? "," : "") + std::to_string(k);
     throw InputError("merge: " + std::to_string(n_missing) + " of " + std::to_string(total) +
                      " points missing (first: " + missing + "); run the missing shards");
+  }
   std::fprintf(out, "%s\n%s\n", signature.c_str(), header.c_str());
   for (const auto& [k, line] : rows) std::fprintf(out, "%s\n", line.c_str());
 }

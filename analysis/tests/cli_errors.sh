@@ -52,8 +52,8 @@ expect 2 "give --csv" -- "$BIN" analyze figures --out-dir "$TMP/bad_fig"
 expect 2 "'nope' is neither a built-in scene" -- "$BIN" analyze seed-section4 --scene nope --out-dir "$TMP/s4"
 expect 2 "unknown signal 'torque'" -- "$BIN" analyze seed-section4 --scene seed-case1 --signals torque --out-dir "$TMP/s4"
 expect 2 "leaves no data" -- "$BIN" analyze seed-section4 --scene seed-case1 --t-end 1 --t-transient 5 --out-dir "$TMP/s4"
-expect 2 "tau must be >= 1" -- "$BIN" analyze seed-section4 --scene seed-case1 --tau 0 --out-dir "$TMP/s4"
-expect 2 "t-end must be > 0" -- "$BIN" analyze seed-section4 --scene seed-case1 --t-end -3 --out-dir "$TMP/s4"
+expect 2 "--tau: .0. is outside 1..100000" -- "$BIN" analyze seed-section4 --scene seed-case1 --tau 0 --out-dir "$TMP/s4"
+expect 2 "--t-end: .-3. is outside \\(0, 100000\\]" -- "$BIN" analyze seed-section4 --scene seed-case1 --t-end -3 --out-dir "$TMP/s4"
 expect 2 "expected 9 comma-separated values" -- "$BIN" lyapunov --scene seed-case1 --x0 1,2 --t-end 1
 expect 2 "no parameter 'clamp'" -- "$BIN" lyapunov --scene seed-case2 --param clamp=3000 --t-end 1
 expect 2 "clamp" -- "$BIN" lyapunov --scene seed-case1 --param clamp_N=-1 --t-end 1
@@ -91,10 +91,10 @@ expect 2 "" -- "$BIN" analyze lle --csv "$TMP/sine.csv" --column s --method foo
 expect 2 "unknown scene 'nope'" -- "$BIN" lyapunov --scene nope --t-end 10
 expect 2 "expected 3 comma-separated values" -- "$BIN" lyapunov --scene lorenz --x0 1,2 --t-end 10
 expect 2 "no parameter 'rhoo'" -- "$BIN" lyapunov --scene lorenz --param rhoo=28 --t-end 10
-expect 2 "t-end must be > 0" -- "$BIN" lyapunov --scene lorenz --t-end 0
+expect 2 "--t-end: .0. is outside \\(0, 1e\\+09\\]" -- "$BIN" lyapunov --scene lorenz --t-end 0
 expect 1 "non-finite" -- "$BIN" lyapunov --scene lorenz --dt 1 --t-end 100
 expect 2 "n must be an integer" -- "$BIN" analyze sweep --scene logistic --axis r=3:4:2.5
-expect 2 "shard must be" -- "$BIN" analyze sweep --scene logistic --axis r=3:4:4 --shard 3/2
+expect 2 "--shard .3/2.: .3. is outside 0..1" -- "$BIN" analyze sweep --scene logistic --axis r=3:4:4 --shard 3/2
 
 # Good paths produce the documented fields.
 out=$("$BIN" analyze classify --csv "$TMP/sine.csv" --column s --json) || { echo "FAIL classify sine"; fail=1; }

@@ -1,7 +1,11 @@
 // The verdict (docs/analysis.md#classify).
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "cvtplant/analysis/classify.hpp"
+#include "cvtplant/analysis/series.hpp"
 #include "signals.hpp"
 
 using namespace cvt::analysis;
@@ -58,4 +62,39 @@ TEST_CASE("classify: a transient that levels off onto a cycle is not a fixed poi
   for (std::size_t i = 0; i < d.size(); ++i) d[i] = (1 + 4 * std::exp(-0.003 * i)) * std::sin(2 * M_PI * i / 97.0);
   const Classification c = classify(d, {});
   CHECK(c.classification != "fixed_point");
+}
+
+TEST_CASE("classify: the verdict does not depend on the series' scale") {
+  // Sums of squares of 1e300-sized samples overflow and those of 1e-300-sized
+  // ones underflow: the statistics must be scale-free, and a plain sine times
+  // either factor is the same periodic signal (it was called a fixed point).
+  const std::vector<double> base = testsig::sine(5000, 37.3);
+  const Classification ref = classify(base, {});
+  REQUIRE(ref.classification == "periodic");
+  for (double k : {1e300, -1e300, 1e-300, 1.7e308 / 1.01}) {
+    std::vector<double> x(base);
+    for (double& v : x) v *= k;
+    const Classification c = classify(x, {});
+    CAPTURE(k);
+    CHECK(c.classification == ref.classification);
+    CHECK(c.amplitude_decay == doctest::Approx(ref.amplitude_decay).epsilon(1e-12));
+    CHECK(std::isfinite(stddev(x)));
+    CHECK(stddev(x) == doctest::Approx(std::abs(k) * stddev(base)).epsilon(1e-12));
+    const std::vector<double> z = zscore(x), zb = zscore(base);
+    double worst = 0;
+    for (std::size_t i = 0; i < z.size(); ++i) worst = std::max(worst, std::abs(z[i] - (k > 0 ? zb[i] : -zb[i])));
+    CHECK(worst < 1e-12);
+  }
+}
+
+TEST_CASE("series statistics: power-of-two normalisation leaves ordinary series bit for bit") {
+  // mean and stddev by the plain formulas, for a series of ordinary scale.
+  const std::vector<double> x = testsig::lorenz_x(3000);
+  double s = 0;
+  for (double v : x) s += v;
+  const double m = s / static_cast<double>(x.size());
+  double q = 0;
+  for (double v : x) q += (v - m) * (v - m);
+  CHECK(mean(x) == m);
+  CHECK(stddev(x) == std::sqrt(q / static_cast<double>(x.size())));
 }

@@ -207,6 +207,52 @@ TEST_CASE("scene validation rejects non-physical values and names the field") {
   CHECK(field_of(b) == "features");
 }
 
+TEST_CASE("scene validation: profile times >= 0, sines below half the frame rate, inputs within the scalar's range") {
+  const cvt::Scene s = *cvt::find_builtin_scene("seed-case1");
+  auto issue_of = [](const cvt::Scene& sc) { return cvt::validate_scene(sc); };
+  cvt::Scene b = s;
+  b.tau_load.kind = cvt::ProfileKind::table;
+  b.tau_load.n = 2;
+  b.tau_load.t_s[0] = -1.0;
+  b.tau_load.t_s[1] = 1.0;
+  CHECK(std::string(issue_of(b).field) == "tau_load");
+  CHECK(std::string(issue_of(b).message) == "profile times must be >= 0");
+  b.tau_load.t_s[0] = 0.0;
+  CHECK(issue_of(b).ok);
+  // Sampled once per 1 ms frame: 500 Hz is the highest frequency a sine may have.
+  b = s;
+  b.tau_in = cvt::sine_profile(100, 5, 500.0, 0);
+  CHECK(issue_of(b).ok);
+  b.tau_in.freq_hz = 500.5;
+  CHECK(std::string(issue_of(b).field) == "tau_in");
+  b.tau_in.freq_hz = 1e300;
+  CHECK(std::string(issue_of(b).field) == "tau_in");
+  b.frame_s = 1e-4;  // a shorter frame resolves it
+  b.tau_in.freq_hz = 5000.0;
+  CHECK(issue_of(b).ok);
+  // The declared range of each profile is its largest |value|.
+  CHECK(cvt::profile_bound(cvt::ramp_profile(32768.0, 40000.0, 0, 1)) == 40000.0);
+  CHECK(cvt::profile_bound(cvt::sine_profile(-100, 30, 1, 0)) == 130.0);
+  CHECK(cvt::profile_bound(cvt::step_profile(-7, 3, 1)) == 7.0);
+  // q16.16 holds |value| < 32768: a clamping ramp to 40 kN is refused for the
+  // fixed-point plants (it would sit at the rail), not for double or float.
+  b = s;
+  b.clamp = cvt::ramp_profile(32768.0, 40000.0, 0, 1);
+  REQUIRE(issue_of(b).ok);
+  CHECK(cvt::check_scalar_range<double>(b).ok);
+  CHECK(cvt::check_scalar_range<float>(b).ok);
+  const cvt::SceneIssue q = cvt::check_scalar_range<cvt::q16_16>(b);
+  CHECK_FALSE(q.ok);
+  CHECK(std::string(q.field) == "clamp");
+  cvt::SceneSimulator<cvt::RomPlantSet<cvt::q16_16, f::axial>> fixed;
+  CHECK(std::string(fixed.load(b).field) == "clamp");
+  CHECK_FALSE(fixed.loaded());
+  b.clamp = cvt::constant_profile(32767.0);
+  CHECK(cvt::check_scalar_range<cvt::q16_16>(b).ok);
+  b.tau_load = cvt::step_profile(0, -40000.0, 1);
+  CHECK(std::string(cvt::check_scalar_range<cvt::q16_16>(b).field) == "tau_load");
+}
+
 TEST_CASE("lumped parameters follow from seed Table 1 (docs/rom.md#lumped-parameters)") {
   const double r1 = 0.0762, r2 = 0.1143, C = 0.5, L = 0.03, m_link = 0.1125, k = 90e3, p = 2.7e3, Kb = 200e3;
   const double theta1 = M_PI - 2.0 * std::asin((r2 - r1) / C);

@@ -23,6 +23,7 @@
 #include "cvtplant/analysis/systems.hpp"
 #include "cvtplant/analysis/test01.hpp"
 #include "io_util.hpp"
+#include "options.hpp"
 #include "model_resolve.hpp"
 #include "registry.hpp"
 #include "scene_file.hpp"
@@ -39,30 +40,51 @@ struct SeriesArgs {
   long discard = 0;
   bool json = false;
   int tau = -1, m = -1, theiler = -1;
+  cvtcli::Caps caps;
 };
 
 void add_series_options(CLI::App* c, SeriesArgs& a, bool embedding) {
   c->add_option("--csv", a.csv, "input CSV with a header row")->required();
   c->add_option("--column", a.column, "column name")->required();
-  c->add_option("--dt", a.dt, "sample interval [s] (exponents are per second)");
-  c->add_option("--discard", a.discard, "drop this many leading samples (transient)");
+  cvtcli::add_real(c, "--dt", a.dt, {0, 1e6, true}, "sample interval [s] (exponents are per second)");
+  cvtcli::add_int(c, "--discard", a.discard, 0, 1000000000000LL, "drop this many leading samples (transient)");
   c->add_flag("--json", a.json, "machine-readable output");
   if (embedding) {
-    c->add_option("--tau", a.tau, "delay [samples] (default: first AMI minimum)");
-    c->add_option("--m", a.m, "embedding dimension (default: FNN)");
-    c->add_option("--theiler", a.theiler, "Theiler window w [samples], pairs |i-j| <= w excluded (default: mean period)");
+    cvtcli::add_int(c, "--tau", a.tau, 1, 100000, "delay [samples] (default: first AMI minimum)");
+    cvtcli::add_int(c, "--m", a.m, 1, 30, "embedding dimension (default: FNN)");
+    cvtcli::add_int(c, "--theiler", a.theiler, 0, 1000000000,
+                    "Theiler window w [samples], pairs |i-j| <= w excluded (default: mean period)");
+  }
+  cvtcli::add_caps(c, a.caps, false, true);
+}
+
+// The column of a CSV, read with the memory cap (the file stops being read
+// once it exceeds --max-memory-mb: an endless stream such as /dev/zero ends).
+CsvColumn read_column(const std::string& path, const std::string& column, const cvtcli::Caps& caps) {
+  try {
+    return read_csv_column(path, column, cvtcli::memory_cap_bytes(caps));
+  } catch (const LimitError& e) {
+    throw cvtcli::UsageError{std::string(e.what()) + "; raise it with --max-memory-mb"};
   }
 }
+
+// Bytes per sample the series tools hold at their peak: the column, its
+// trimmed and z-scored copies, and the delay embedding and neighbour search
+// of up to --m-max = 30 dimensions (measured peak RSS per sample in
+// docs/cli.md#caps: 165 B at the default dimensions, 330 B at m = 30).
+constexpr double kSeriesBytesPerSample = 512;
 
 // Loads, trims and z-scores the column (docs/analysis.md#input). Every
 // analysis works on the normalised series, as the seed does.
 std::vector<double> load(const SeriesArgs& a, std::size_t min_points) {
   if (!(a.dt > 0) || !std::isfinite(a.dt)) throw cvtcli::UsageError{"--dt must be a positive number"};
   if (a.discard < 0) throw cvtcli::UsageError{"--discard must be >= 0"};
-  CsvColumn c = read_csv_column(a.csv, a.column);
+  CsvColumn c = read_column(a.csv, a.column, a.caps);
   if (static_cast<std::size_t>(a.discard) >= c.values.size())
     throw cvtcli::UsageError{"--discard " + std::to_string(a.discard) + " removes all " + std::to_string(c.values.size()) +
                              " samples"};
+  cvtcli::require_memory(kSeriesBytesPerSample * static_cast<double>(c.values.size()), a.caps,
+                         cvtcli::fmt_count(static_cast<double>(c.values.size())) + " samples");
   std::vector<double> x(c.values.begin() + a.discard, c.values.end());
   validate_series(x, min_points, "column '" + a.column + "'");
   return zscore(x);
@@ -176,8 +198,8 @@ cvtcli::Action register_analyze(CLI::App& app) {
     auto bins = std::make_shared<int>(0);
     auto* c = an->add_subcommand("ami", "average mutual information and autocorrelation; delay choice");
     add_series_options(c, *a, false);
-    c->add_option("--max-lag", *lag, "largest lag [samples] (default min(N/10, 500))");
-    c->add_option("--bins", *bins, "histogram bins (default cbrt(N) clamped to 8..64)");
+    cvtcli::add_int(c, "--max-lag", *lag, 1, 100000, "largest lag [samples] (default min(N/10, 500))");
+    cvtcli::add_int(c, "--bins", *bins, 2, 4096, "histogram bins (default cbrt(N) clamped to 8..64)");
     tools.push_back({c, [a, lag, bins] {
                        const auto x = load(*a, 50);
                        const int L = *lag > 0 ? *lag : std::min<int>(static_cast<int>(x.size() / 10), 500);
@@ -197,10 +219,10 @@ cvtcli::Action register_analyze(CLI::App& app) {
     auto o = std::make_shared<FnnOptions>();
     auto* c = an->add_subcommand("fnn", "false nearest neighbours (Kennel: Rtol=10, Atol=2)");
     add_series_options(c, *a, true);
-    c->add_option("--m-max", o->m_max, "largest dimension tested");
-    c->add_option("--rtol", o->rtol, "Kennel criterion 1 threshold");
-    c->add_option("--atol", o->atol, "Kennel criterion 2 threshold");
-    c->add_option("--threshold", o->threshold, "dimension = first m with FNN fraction <= threshold");
+    cvtcli::add_int(c, "--m-max", o->m_max, 1, 30, "largest dimension tested");
+    cvtcli::add_real(c, "--rtol", o->rtol, {0, 1e6, true}, "Kennel criterion 1 threshold");
+    cvtcli::add_real(c, "--atol", o->atol, {0, 1e6, true}, "Kennel criterion 2 threshold");
+    cvtcli::add_real(c, "--threshold", o->threshold, {0, 1}, "dimension = first m with FNN fraction <= threshold");
     tools.push_back({c, [a, o] {
                        const auto x = load(*a, 100);
                        FnnOptions fo = *o;
@@ -229,8 +251,8 @@ cvtcli::Action register_analyze(CLI::App& app) {
     auto o = std::make_shared<CaoOptions>();
     auto* c = an->add_subcommand("cao", "Cao's E1/E2 embedding dimension");
     add_series_options(c, *a, true);
-    c->add_option("--m-max", o->m_max, "largest dimension tested");
-    c->add_option("--e1-threshold", o->e1_threshold, "dimension = first m with E1(m) >= threshold");
+    cvtcli::add_int(c, "--m-max", o->m_max, 1, 30, "largest dimension tested");
+    cvtcli::add_real(c, "--e1-threshold", o->e1_threshold, {0, 1, true}, "dimension = first m with E1(m) >= threshold");
     tools.push_back({c, [a, o] {
                        const auto x = load(*a, 100);
                        CaoOptions co = *o;
@@ -257,8 +279,9 @@ cvtcli::Action register_analyze(CLI::App& app) {
     auto* c = an->add_subcommand("lle", "largest Lyapunov exponent (Rosenstein or Kantz) with automatic scaling region");
     add_series_options(c, *a, true);
     c->add_option("--method", *method, "rosenstein | kantz | both")->check(CLI::IsMember({"rosenstein", "kantz", "both"}));
-    c->add_option("--k-max", o->k_max, "divergence horizon [samples] (default 5 mean periods)");
-    c->add_option("--eps", o->eps, "Kantz radius in std units (default: median 10th-neighbour distance)");
+    cvtcli::add_int(c, "--k-max", o->k_max, 1, 1000000, "divergence horizon [samples] (default 5 mean periods)");
+    cvtcli::add_real(c, "--eps", o->eps, {0, 1e3, true},
+                     "Kantz radius in std units (default: median 10th-neighbour distance)");
     tools.push_back({c, [a, method, o] {
                        const auto x = load(*a, 100);
                        LleOptions lo = *o;
@@ -292,13 +315,15 @@ cvtcli::Action register_analyze(CLI::App& app) {
       auto* c = png ? an->add_subcommand("recurrence", "recurrence plot as PNG (plus the RQA measures)")
                     : an->add_subcommand("rqa", "recurrence quantification: RR DET L Lmax ENTR LAM TT (streaming)");
       add_series_options(c, *a, true);
-      c->add_option("--eps", o->eps, "recurrence radius in std units of the series (default: from --rr)");
-      c->add_option("--rr", o->target_rr, "target recurrence rate when --eps is not given");
-      c->add_option("--lmin", o->lmin, "minimal diagonal line");
-      c->add_option("--vmin", o->vmin, "minimal vertical line");
+      // Up to 1e3 std units: beyond, every pair recurs (RR = 1) and the
+      // streaming count becomes N^2 work for no information.
+      cvtcli::add_real(c, "--eps", o->eps, {0, 1e3, true}, "recurrence radius in std units of the series (default: from --rr)");
+      cvtcli::add_real(c, "--rr", o->target_rr, {0, 1, true, true}, "target recurrence rate when --eps is not given");
+      cvtcli::add_int(c, "--lmin", o->lmin, 1, 1000000, "minimal diagonal line");
+      cvtcli::add_int(c, "--vmin", o->vmin, 1, 1000000, "minimal vertical line");
       if (png) {
         c->add_option("--png", *path, "output PNG file")->required();
-        c->add_option("--pixels", *pixels, "image side in pixels (max)");
+        cvtcli::add_int(c, "--pixels", *pixels, 16, 8192, "image side in pixels (max)");
       }
       const bool is_png = png != 0;
       tools.push_back({c, [a, o, path, pixels, is_png] {
@@ -334,9 +359,9 @@ cvtcli::Action register_analyze(CLI::App& app) {
     o->subsample = -1;
     auto* c = an->add_subcommand("test01", "Gottwald-Melbourne 0-1 test for chaos (K ~ 0 regular, ~ 1 chaotic or noise)");
     add_series_options(c, *a, false);
-    c->add_option("--subsample", o->subsample, "use every n-th sample (default: the AMI delay)");
-    c->add_option("--n-c", o->n_c, "number of random frequencies c");
-    c->add_option("--max-points", o->max_points, "points used after subsampling");
+    cvtcli::add_int(c, "--subsample", o->subsample, 1, 1000000, "use every n-th sample (default: the AMI delay)");
+    cvtcli::add_int(c, "--n-c", o->n_c, 1, 10000, "number of random frequencies c");
+    cvtcli::add_int(c, "--max-points", o->max_points, 100, 10000000, "points used after subsampling");
     tools.push_back({c, [a, o] {
                        const auto x = load(*a, 100);
                        Test01Options to = *o;
@@ -357,10 +382,11 @@ cvtcli::Action register_analyze(CLI::App& app) {
     auto* c = an->add_subcommand("classify", "verdict: fixed_point / periodic / quasi_periodic / chaotic / inconclusive");
     add_series_options(c, *a, true);
     tools.push_back({c, [a] {
-                       if (!(a->dt > 0) || !std::isfinite(a->dt)) throw cvtcli::UsageError{"--dt must be a positive number"};
-                       CsvColumn col = read_csv_column(a->csv, a->column);
+                       CsvColumn col = read_column(a->csv, a->column, a->caps);
                        if (a->discard < 0 || static_cast<std::size_t>(a->discard) >= col.values.size())
                          throw cvtcli::UsageError{"--discard must be in 0..N-1"};
+                       cvtcli::require_memory(kSeriesBytesPerSample * static_cast<double>(col.values.size()), a->caps,
+                                              cvtcli::fmt_count(static_cast<double>(col.values.size())) + " samples");
                        std::vector<double> x(col.values.begin() + a->discard, col.values.end());
                        ClassifyOptions co;
                        co.dt = a->dt;
@@ -383,17 +409,19 @@ cvtcli::Action register_analyze(CLI::App& app) {
       std::string scene, x0, out = "-";
       std::vector<std::string> params;
       double dt = -1, t_transient = 0, t_end = 10, sample_dt = 0.001;
+      cvtcli::Caps caps;
     };
     auto a = std::make_shared<T>();
     auto* c = an->add_subcommand("trajectory", "simulate a scene (RK4) and write its states as CSV");
     c->add_option("--scene", a->scene, "model (see cvtplant lyapunov --list) or plant scene (built-in or TOML file) with constant inputs")->required();
     c->add_option("--x0", a->x0, "initial state, comma-separated");
     c->add_option("--param", a->params, "name=value (repeatable)");
-    c->add_option("--dt", a->dt, "RK4 step [s] (default: the scene's)");
-    c->add_option("--t-transient", a->t_transient, "time not written [s]");
-    c->add_option("--t-end", a->t_end, "time written [s] (maps: iterations)");
-    c->add_option("--sample-dt", a->sample_dt, "output interval [s]");
+    cvtcli::add_real(c, "--dt", a->dt, {1e-9, 1}, "RK4 step [s] (default: the scene's)");
+    cvtcli::add_real(c, "--t-transient", a->t_transient, {0, 1e9}, "time not written [s] (maps: iterations)");
+    cvtcli::add_real(c, "--t-end", a->t_end, {0, 1e9, true}, "time written [s] (maps: iterations)");
+    cvtcli::add_real(c, "--sample-dt", a->sample_dt, {0, 1e9, true}, "output interval [s]");
     c->add_option("--out", a->out, "output CSV ('-' = stdout)");
+    cvtcli::add_caps(c, a->caps, true, true);
     tools.push_back({c, [a] {
                        const auto model = cvtcli::resolve_model(a->scene);
                        const Model& s = *model;
@@ -406,10 +434,17 @@ cvtcli::Action register_analyze(CLI::App& app) {
                        const Params p = merge_params(s, over);
                        const auto x0 = a->x0.empty() ? s.default_x0 : cvtcli::parse_list(a->x0, s.dim, "--x0");
                        const double dt = a->dt > 0 ? a->dt : s.defaults.dt;
-                       if (!(a->t_end > 0) || !(a->sample_dt > 0) || a->t_transient < 0)
-                         throw cvtcli::UsageError{"need --t-end > 0, --sample-dt > 0, --t-transient >= 0"};
+                       // Work and memory before the run: every step, and the rows held until written.
+                       const double steps = s.is_map ? a->t_transient + a->t_end : (a->t_transient + a->t_end) / dt;
+                       const double rows_n = s.is_map ? a->t_end : a->t_end / std::max(a->sample_dt, dt);
+                       cvtcli::require_steps(steps, a->caps, s.is_map ? "--t-transient + --t-end iterations"
+                                                                       : "(--t-transient + --t-end) / --dt");
+                       cvtcli::require_memory(rows_n * s.dim * 8.0, a->caps,
+                                              cvtcli::fmt_count(rows_n) + " rows of " + std::to_string(s.dim) + " states");
+                       std::vector<std::string> inputs;
+                       if (!has_model(a->scene)) inputs.push_back(a->scene);
+                       std::FILE* f = cvtcli::open_output(a->out, "--out", inputs);
                        const auto rows = s.trajectory(p, x0, dt, a->t_transient, a->t_end, a->sample_dt);
-                       std::FILE* f = cvtcli::open_output(a->out);
                        std::fprintf(f, "t");
                        for (const auto& n : s.state_names) std::fprintf(f, ",%s", n.c_str());
                        std::fprintf(f, "\n");
@@ -419,6 +454,7 @@ cvtcli::Action register_analyze(CLI::App& app) {
                          std::fprintf(f, "%.10g", a->t_transient + (i + 1) * step);
                          for (int k = 0; k < s.dim; ++k) std::fprintf(f, ",%.12g", rows[i * s.dim + k]);
                          std::fprintf(f, "\n");
+                         if (!cvtcli::output_ok(f)) break;  // reported by close_output
                        }
                        cvtcli::close_output(f);
                        return 0;
@@ -430,6 +466,7 @@ cvtcli::Action register_analyze(CLI::App& app) {
       std::vector<std::string> params;
       double dt = -1, t_transient = -1, t_end = -1, t_peaks = 20;
       int jobs = 0, state = 0;
+      cvtcli::Caps caps;
     };
     auto a = std::make_shared<S>();
     auto* c = an->add_subcommand("sweep", "parameter sweep: spectrum + bifurcation data, parallel and shardable");
@@ -438,14 +475,15 @@ cvtcli::Action register_analyze(CLI::App& app) {
     c->add_option("--axis2", a->a2, "optional second axis name=lo:hi:n");
     c->add_option("--param", a->params, "fixed override name=value (repeatable)");
     c->add_option("--x0", a->x0, "initial state");
-    c->add_option("--dt", a->dt, "RK4 step [s]");
-    c->add_option("--t-transient", a->t_transient, "discarded time [s]");
-    c->add_option("--t-end", a->t_end, "accumulation time [s]");
-    c->add_option("--t-peaks", a->t_peaks, "time after the spectrum run for bifurcation peaks [s]");
-    c->add_option("--state", a->state, "state index whose local maxima are recorded");
+    cvtcli::add_real(c, "--dt", a->dt, {1e-9, 1}, "RK4 step [s]");
+    cvtcli::add_real(c, "--t-transient", a->t_transient, {0, 1e9}, "discarded time [s]");
+    cvtcli::add_real(c, "--t-end", a->t_end, {0, 1e9, true}, "accumulation time [s]");
+    cvtcli::add_real(c, "--t-peaks", a->t_peaks, {0, 1e9}, "time after the spectrum run for bifurcation peaks [s]");
+    cvtcli::add_int(c, "--state", a->state, 0, 1000, "state index whose local maxima are recorded");
     c->add_option("--shard", a->shard, "i/N: run points k with k % N == i (for array jobs)");
-    c->add_option("--jobs", a->jobs, "threads (default: all cores)");
+    cvtcli::add_int(c, "--jobs", a->jobs, 0, 1024, "threads (default 0: all cores)");
     c->add_option("--out", a->out, "output CSV ('-' = stdout)");
+    cvtcli::add_caps(c, a->caps, true, true);
     tools.push_back({c, [a] {
                        SweepSpec sp;
                        sp.scene = a->scene;
@@ -469,16 +507,43 @@ cvtcli::Action register_analyze(CLI::App& app) {
                        if (a->t_end > 0) sp.benettin.t_end = a->t_end;
                        sp.t_peaks = a->t_peaks;
                        sp.bif_state = a->state;
-                       int si = 0, sn = 1;
-                       if (std::sscanf(a->shard.c_str(), "%d/%d", &si, &sn) != 2)
-                         throw cvtcli::UsageError{"--shard must look like i/N"};
-                       const auto pts = run_sweep(sp, si, sn, a->jobs);
-                       std::FILE* f = cvtcli::open_output(a->out);
+                       if (a->state >= s.dim)
+                         throw cvtcli::UsageError{"--state: " + std::to_string(a->state) + " is not a state index of " +
+                                                  s.name + " (0.." + std::to_string(s.dim - 1) + ")"};
+                       long long si = 0, sn = 1;
+                       {
+                         const std::size_t slash = a->shard.find('/');
+                         std::string why = slash == std::string::npos ? "must look like i/N" : "";
+                         if (why.empty()) why = cvtcli::check_int(a->shard.substr(slash + 1), 1, 1000000, &sn);
+                         if (why.empty()) why = cvtcli::check_int(a->shard.substr(0, slash), 0, sn - 1, &si);
+                         if (!why.empty()) throw cvtcli::UsageError{"--shard " + cvtcli::quoted(a->shard) + ": " + why};
+                       }
+                       // Work and memory of this shard before it runs: every point's
+                       // transient, warm-up, accumulation and peak search; its row.
+                       const double points = std::ceil(static_cast<double>(sp.total()) / static_cast<double>(sn));
+                       const BenettinOptions& bo = sp.benettin;
+                       const double span = bo.t_transient + bo.t_warmup + bo.t_end + sp.t_peaks;
+                       cvtcli::require_steps(points * (s.is_map ? span : span / bo.dt), a->caps,
+                                             cvtcli::fmt_count(points) + " points x " +
+                                                 (s.is_map ? "(transient + warm-up + accumulation + peaks) iterations"
+                                                           : "(transient + warm-up + accumulation + peaks) / dt"));
+                       cvtcli::require_memory(points * (2.0 * s.dim + sp.max_peaks + 8) * 8.0, a->caps,
+                                              cvtcli::fmt_count(points) + " points");
+                       sp.benettin.max_steps = a->caps.max_steps;
+                       std::vector<std::string> inputs;
+                       if (!has_model(a->scene)) inputs.push_back(a->scene);
+                       std::FILE* f = cvtcli::open_output(a->out, "--out", inputs);
+                       const auto pts = run_sweep(sp, static_cast<int>(si), static_cast<int>(sn), a->jobs);
                        write_sweep_csv(f, sp, s.dim, pts);
                        cvtcli::close_output(f);
                        long failed = 0;
                        for (const auto& p : pts) failed += !p.error.empty();
-                       if (failed > 0) std::fprintf(stderr, "cvtplant analyze sweep: %ld point(s) failed (see error column)\n", failed);
+                       if (!pts.empty() && failed == static_cast<long>(pts.size()))
+                         throw cvtcli::RunError{"every point (" + std::to_string(failed) + ") failed; first error: " +
+                                                cvtcli::quoted(pts.front().error, 200)};
+                       if (failed > 0)
+                         std::fprintf(stderr, "cvtplant analyze sweep: %ld of %zu point(s) failed (see the error column)\n",
+                                      failed, pts.size());
                        return 0;
                      }});
   }
@@ -489,7 +554,7 @@ cvtcli::Action register_analyze(CLI::App& app) {
     c->add_option("shards", *shards, "shard CSV files")->required();
     c->add_option("--out", *out, "merged CSV ('-' = stdout)");
     tools.push_back({c, [shards, out] {
-                       std::FILE* f = cvtcli::open_output(*out);
+                       std::FILE* f = cvtcli::open_output(*out, "--out", *shards);
                        merge_sweep_csv(*shards, f);
                        cvtcli::close_output(f);
                        return 0;
@@ -501,27 +566,31 @@ cvtcli::Action register_analyze(CLI::App& app) {
     auto sweep = std::make_shared<std::string>();
     auto scene = std::make_shared<std::string>();
     auto t_end = std::make_shared<double>(20.0);
+    auto caps = std::make_shared<cvtcli::Caps>();
     auto* c = an->add_subcommand("figures", "PNG figures via gnuplot: series (--csv), scene (--scene) or sweep (--sweep)");
     c->add_option("--csv", a->csv, "input CSV");
     c->add_option("--column", a->column, "column name");
-    c->add_option("--dt", a->dt, "sample interval [s]");
-    c->add_option("--discard", a->discard, "leading samples dropped");
-    c->add_option("--tau", a->tau, "delay [samples]");
-    c->add_option("--m", a->m, "embedding dimension");
+    cvtcli::add_real(c, "--dt", a->dt, {0, 1e6, true}, "sample interval [s]");
+    cvtcli::add_int(c, "--discard", a->discard, 0, 1000000000000LL, "leading samples dropped");
+    cvtcli::add_int(c, "--tau", a->tau, 1, 100000, "delay [samples]");
+    cvtcli::add_int(c, "--m", a->m, 1, 30, "embedding dimension");
     c->add_option("--scene", *scene, "scene for time histories and phase portraits");
-    c->add_option("--t-end", *t_end, "scene simulation time [s]");
+    cvtcli::add_real(c, "--t-end", *t_end, {0, 1e5, true}, "scene simulation time [s] (maps: iterations)");
+    cvtcli::add_caps(c, *caps, true, true);
     c->add_option("--sweep", *sweep, "merged sweep CSV for bifurcation and exponent maps");
     c->add_option("--out-dir", *dir, "output directory")->required();
     c->add_flag("--json", a->json, "print the written files as JSON");
-    tools.push_back({c, [a, dir, sweep, scene, t_end] {
+    tools.push_back({c, [a, dir, sweep, scene, t_end, caps] {
                        std::vector<std::string> files;
                        if (a->csv.empty() && sweep->empty() && scene->empty())
                          throw cvtcli::UsageError{"give --csv/--column, --scene or --sweep"};
                        if (!a->csv.empty()) {
                          if (a->column.empty()) throw cvtcli::UsageError{"--column is required with --csv"};
-                         CsvColumn col = read_csv_column(a->csv, a->column);
+                         CsvColumn col = read_column(a->csv, a->column, *caps);
                          if (a->discard < 0 || static_cast<std::size_t>(a->discard) >= col.values.size())
                            throw cvtcli::UsageError{"--discard must be in 0..N-1"};
+                         cvtcli::require_memory(kSeriesBytesPerSample * static_cast<double>(col.values.size()), *caps,
+                                                cvtcli::fmt_count(static_cast<double>(col.values.size())) + " samples");
                          std::vector<double> x(col.values.begin() + a->discard, col.values.end());
                          auto f = series_figures(x, a->dt, a->column, *dir, a->tau, a->m);
                          files.insert(files.end(), f.begin(), f.end());
@@ -529,6 +598,9 @@ cvtcli::Action register_analyze(CLI::App& app) {
                        if (!scene->empty()) {
                          const auto model = cvtcli::resolve_model(*scene);
                          const Model& s = *model;
+                         const double steps = s.is_map ? *t_end : *t_end / s.defaults.dt;
+                         cvtcli::require_steps(steps, *caps, s.is_map ? "--t-end iterations" : "--t-end / the scene's dt");
+                         cvtcli::require_memory(steps * s.dim * 8.0, *caps, cvtcli::fmt_count(steps) + " states");
                          auto f = model_figures(s, s.default_params, s.default_x0, s.defaults.dt, *t_end, *dir);
                          files.insert(files.end(), f.begin(), f.end());
                        }
@@ -550,6 +622,7 @@ cvtcli::Action register_analyze(CLI::App& app) {
       double t_end = -1, t_transient = 2.0;
       int tau = -1, m = -1;
       bool json = false;
+      cvtcli::Caps caps;
     };
     auto a = std::make_shared<A>();
     auto* c = an->add_subcommand("seed-section4",
@@ -559,17 +632,13 @@ cvtcli::Action register_analyze(CLI::App& app) {
     c->add_option("--scene", a->scene, "plant scene: built-in (seed-case1, seed-case2, ...; see cvtplant scenes) or a TOML scene file")->required();
     c->add_option("--out-dir", a->out_dir, "output directory: <signal>/*.png and summary.json")->required();
     c->add_option("--signals", a->signals, "comma-separated plant outputs (F_ax, torque_transmitted, slip, v_rel1, ...)");
-    c->add_option("--t-end", a->t_end, "simulated time [s] (default: the scene's)");
-    c->add_option("--t-transient", a->t_transient, "removed from the start before the analysis [s]");
-    c->add_option("--tau", a->tau, "delay [samples] (default: first AMI minimum)");
-    c->add_option("--m", a->m, "embedding dimension (default: FNN)");
+    cvtcli::add_real(c, "--t-end", a->t_end, {0, 1e5, true}, "simulated time [s] (default: the scene's)");
+    cvtcli::add_real(c, "--t-transient", a->t_transient, {0, 1e5}, "removed from the start before the analysis [s]");
+    cvtcli::add_int(c, "--tau", a->tau, 1, 100000, "delay [samples] (default: first AMI minimum)");
+    cvtcli::add_int(c, "--m", a->m, 1, 30, "embedding dimension (default: FNN)");
     c->add_flag("--json", a->json, "print the summary as JSON");
+    cvtcli::add_caps(c, a->caps, true, true);
     tools.push_back({c, [a] {
-                       if (a->t_end != -1 && !(a->t_end > 0)) throw cvtcli::UsageError{"--t-end must be > 0"};
-                       if (!(a->t_transient >= 0) || !std::isfinite(a->t_transient))
-                         throw cvtcli::UsageError{"--t-transient must be >= 0"};
-                       if (a->tau == 0 || a->tau < -1) throw cvtcli::UsageError{"--tau must be >= 1"};
-                       if (a->m == 0 || a->m < -1) throw cvtcli::UsageError{"--m must be >= 1"};
                        std::vector<std::string> names;
                        {
                          std::stringstream ss(a->signals);
@@ -579,6 +648,18 @@ cvtcli::Action register_analyze(CLI::App& app) {
                        }
                        if (names.empty()) throw cvtcli::UsageError{"--signals is empty"};
                        const auto scene = cvtcli::resolve_scene(a->scene);
+                       {
+                         // Work and memory before the run: the frames and their substeps;
+                         // the time and every signal stored, then one signal's analysis.
+                         const cvt::Scene& sc = scene->scene;
+                         const double frames = (a->t_end > 0 ? a->t_end : sc.t_end_s) / sc.frame_s;
+                         cvtcli::require_steps(frames * sc.substeps, a->caps,
+                                               cvtcli::fmt_count(frames) + " frames x " + std::to_string(sc.substeps) +
+                                                   " substeps");
+                         cvtcli::require_memory(frames * (8.0 * (1 + names.size()) + kSeriesBytesPerSample), a->caps,
+                                                cvtcli::fmt_count(frames) + " samples of " +
+                                                    std::to_string(names.size()) + " signal(s) and their analysis");
+                       }
                        const RomSeries run = rom_scene_series(scene->scene, scene->name, names, a->t_end);
                        ensure_dir(a->out_dir);
                        if (run.fault != "none")
@@ -606,9 +687,10 @@ cvtcli::Action register_analyze(CLI::App& app) {
                        }
                        const std::string summary = a->out_dir + "/summary.json";
                        {
-                         std::ofstream f(summary);
-                         if (!f) throw cvtcli::UsageError{"cannot write '" + summary + "'"};
-                         f << out.dump(2) << '\n';
+                         std::FILE* f = cvtcli::open_output(summary, "--out-dir");
+                         const std::string text = out.dump(2) + "\n";
+                         std::fwrite(text.data(), 1, text.size(), f);
+                         cvtcli::close_output(f);
                        }
                        if (a->json) {
                          cvtcli::print_json(out);

@@ -9,6 +9,7 @@
 #include "cvtplant/analysis/errors.hpp"
 #include "cvtplant/analysis/systems.hpp"
 #include "io_util.hpp"
+#include "options.hpp"
 #include "model_resolve.hpp"
 #include "registry.hpp"
 
@@ -126,6 +127,7 @@ cvtcli::Action register_lyapunov(CLI::App& app) {
     double t_transient = -1, t_warmup = -1, t_end = -1, dt = -1, t_renorm = -1;
     int batches = 20;
     bool json = false, dt_check = false, list = false;
+    cvtcli::Caps caps;
   };
   auto a = std::make_shared<Args>();
   sub->add_option("--scene", a->scene,
@@ -133,15 +135,17 @@ cvtcli::Action register_lyapunov(CLI::App& app) {
                   "plant scene with constant inputs: built-in (see `cvtplant scenes`) or a TOML scene file");
   sub->add_option("--x0", a->x0, "initial state, comma-separated (default: the scene's; oscillators: 0,3,0,6)");
   sub->add_option("--param", a->params, "override a scene parameter, name=value (repeatable)");
-  sub->add_option("--t-transient", a->t_transient, "discarded time [s] (maps: iterations)");
-  sub->add_option("--t-warmup", a->t_warmup, "deviation-vector warm-up [s], not accumulated");
-  sub->add_option("--t-end", a->t_end, "accumulation time [s] (maps: iterations)");
-  sub->add_option("--dt", a->dt, "RK4 step [s]");
-  sub->add_option("--t-renorm", a->t_renorm, "QR interval [s] (default: the scene's; max(dt, 0.05) for the reference systems, 1e-3 for the ROM)");
-  sub->add_option("--batches", a->batches, "batches for the confidence interval (>= 2)");
+  cvtcli::add_real(sub, "--t-transient", a->t_transient, {0, 1e9}, "discarded time [s] (maps: iterations)");
+  cvtcli::add_real(sub, "--t-warmup", a->t_warmup, {0, 1e9}, "deviation-vector warm-up [s], not accumulated");
+  cvtcli::add_real(sub, "--t-end", a->t_end, {0, 1e9, true}, "accumulation time [s] (maps: iterations)");
+  cvtcli::add_real(sub, "--dt", a->dt, {1e-9, 1}, "RK4 step [s]");
+  cvtcli::add_real(sub, "--t-renorm", a->t_renorm, {0, 1e6, true},
+                   "QR interval [s] (default: the scene's; max(dt, 0.05) for the reference systems, 1e-3 for the ROM)");
+  cvtcli::add_int(sub, "--batches", a->batches, 2, 1000, "batches for the confidence interval");
   sub->add_flag("--dt-check", a->dt_check, "repeat with dt/2 and report the change of each exponent");
   sub->add_flag("--list", a->list, "list scenes and their parameters");
   sub->add_flag("--json", a->json, "machine-readable output");
+  cvtcli::add_caps(sub, a->caps, true, false);
   return [a]() -> int {
     try {
       if (a->list) {
@@ -179,9 +183,21 @@ cvtcli::Action register_lyapunov(CLI::App& app) {
       if (!s.is_map && !(o.dt > 0)) throw cvtcli::UsageError{"--dt must be > 0"};
       if (o.batches < 2 || o.batches > 1000) throw cvtcli::UsageError{"--batches must be in 2..1000"};
       if (s.is_map && o.t_end < o.batches) throw cvtcli::UsageError{"--t-end must be at least --batches iterations"};
+      // Work before the run: every step of transient, warm-up and accumulation
+      // (dt/2 check: twice as many again). A plant scene may shorten dt for its
+      // stiffness; the library refuses that run against the same cap.
+      const double runs = a->dt_check && !s.is_map ? 3.0 : 1.0;
+      const double span = o.t_transient + o.t_warmup + o.t_end;
+      cvtcli::require_steps(runs * (s.is_map ? span : span / o.dt), a->caps,
+                            s.is_map ? "--t-transient + --t-warmup + --t-end iterations"
+                                     : std::string("(--t-transient + --t-warmup + --t-end) / --dt") +
+                                           (runs > 1 ? ", three times with --dt-check" : ""));
+      o.max_steps = a->caps.max_steps;
       SpectrumResult r;
       try {
         r = s.spectrum(p, x0, o);
+      } catch (const LimitError& e) {
+        throw cvtcli::UsageError{std::string(e.what()) + "; raise it with --max-steps"};
       } catch (const std::invalid_argument& e) {
         throw cvtcli::UsageError{e.what()};
       } catch (const InputError& e) {
@@ -206,6 +222,8 @@ cvtcli::Action register_lyapunov(CLI::App& app) {
         SpectrumResult r2;
         try {
           r2 = s.spectrum(p, x0, o2);
+        } catch (const LimitError& e) {
+          throw cvtcli::UsageError{std::string("dt/2 run: ") + e.what() + "; raise it with --max-steps"};
         } catch (const std::runtime_error& e) {
           throw cvtcli::RunError{std::string("dt/2 run: ") + e.what()};
         }

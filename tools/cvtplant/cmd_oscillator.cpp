@@ -10,6 +10,7 @@
 
 #include "commands.hpp"
 #include "io_util.hpp"
+#include "options.hpp"
 #include "registry.hpp"
 #include "cvtplant/integrate/method.hpp"
 #include "cvtplant/plant/oscillator.hpp"
@@ -30,17 +31,40 @@ struct Options {
   bool json = false;
   // Settling test on the last window (docs/cli.md#oscillator-summary).
   double settle_window_s = 1.0;
+  cvtcli::Caps caps;
 };
 
 struct Summary {
   double final_state[4] = {0, 0, 0, 0};
   bool finite = true;
+  bool write_failed = false;
+  bool saturated = false;  // fixed point: the state left the range its arithmetic holds
   bool settled = false;
   double x1_min = 0, x1_max = 0, v_abs_max = 0;
   double period_s = 0;  // 0 if no oscillation detected
   long steps = 0;
   double wall_s = 0;
+  double dt_actual_s = 0;  // the step taken: --dt rounded to the scalar (q16.16: a multiple of 2^-16 s)
 };
+
+// Largest magnitude the right-hand side of seed Eq. 9 forms at state x
+// (docs/cli.md#oscillator-fixed-point): per mass, the friction force at its
+// largest coefficient, the ground spring and damper and the coupling element,
+// divided by the mass. In q16.16 every one of them must stay below 32768 or
+// it saturates; the run keeps them below half of that so the RK4 stages,
+// which evaluate the right-hand side up to a step ahead, stay in range too.
+double rhs_magnitude(const cvt::OscillatorParams<double>& p, const double x[4]) {
+  const double mu_max = p.friction.law == cvt::FrictionLaw::case2 ? p.friction.mu0 * p.friction.sigma : p.friction.mu0;
+  const double mid = p.k2_N_m * std::fabs(x[0] - x[2]) + p.c2_Ns_m * std::fabs(x[1] - x[3]);
+  double worst = 0;
+  for (int i = 0; i < 2; ++i) {
+    const double m = i == 0 ? p.m1_kg : p.m2_kg;
+    const double ground = p.k1_N_m * std::fabs(x[2 * i]) + p.c1_Ns_m * std::fabs(x[2 * i + 1]);
+    worst = std::max({worst, (mu_max * m * p.g_m_s2 + ground + mid) / m, ground, mid, std::fabs(x[2 * i + 1])});
+  }
+  return worst;
+}
+constexpr double kFixedHeadroom = 16384.0;  // half the q16.16 range
 
 template <class T>
 Summary run(const Options& o, const cvt::FrictionParams<double>& fr, const double x0[4], std::FILE* csv) {
@@ -57,6 +81,7 @@ Summary run(const Options& o, const cvt::FrictionParams<double>& fr, const doubl
   const long window_start = std::max<long>(0, n - std::lround(o.settle_window_s / h_actual));
 
   Summary s;
+  s.dt_actual_s = h_actual;
   s.x1_min = 1e300;
   s.x1_max = -1e300;
   // Period from upward zero crossings of v1 in the second half of the run
@@ -89,6 +114,14 @@ Summary run(const Options& o, const cvt::FrictionParams<double>& fr, const doubl
       s.steps = i;
       break;
     }
+    if constexpr (cvt::is_fixed_point_v<T>) {
+      const double xs[4] = {cvt::to_double(x(0)), v1, cvt::to_double(x(2)), cvt::to_double(x(3))};
+      if (rhs_magnitude(pd, xs) > kFixedHeadroom) {
+        s.saturated = true;
+        s.steps = i;
+        break;
+      }
+    }
     if (i >= window_start) {
       const double x1 = cvt::to_double(x(0));
       s.x1_min = std::min(s.x1_min, x1);
@@ -101,7 +134,14 @@ Summary run(const Options& o, const cvt::FrictionParams<double>& fr, const doubl
       ++crossings;
     }
     prev_v1 = v1;
-    if (csv != nullptr && i % o.every == 0) write_row(t);
+    if (csv != nullptr && i % o.every == 0) {
+      write_row(t);
+      if (!cvtcli::output_ok(csv)) {  // closed pipe, full disk: stop, the caller reports it
+        s.write_failed = true;
+        s.steps = i;
+        break;
+      }
+    }
     s.steps = i;
   }
   s.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -120,43 +160,58 @@ cvtcli::Action register_oscillator(CLI::App& app) {
   sub->add_option("--friction", opt->friction, "Friction law: coulomb (constant mu0) or stribeck (section 3)")
       ->check(CLI::IsMember({"coulomb", "stribeck"}));
   sub->add_option("--x0", opt->x0, "Initial state X1,V1,X2,V2 [m, m/s, m, m/s]");
-  sub->add_option("--t-end", opt->t_end_s, "Simulated time [s]")->required();
-  sub->add_option("--dt", opt->dt_s, "Fixed step [s]");
+  cvtcli::add_real(sub, "--t-end", opt->t_end_s, {0, 1e6, true}, "Simulated time [s]")->required();
+  cvtcli::add_real(sub, "--dt", opt->dt_s, {1e-9, 1}, "Fixed step [s], at most --t-end");
   sub->add_option("--integrator", opt->integrator,
                   "euler | semi-implicit-euler | heun | rk4 | linear-implicit-euler | ros2");
   sub->add_option("--scalar", opt->scalar, "double | float | fixed (q16.16)")
       ->check(CLI::IsMember({"double", "float", "fixed"}));
   sub->add_option("--csv", opt->csv, "Write the trajectory as CSV (t,x1,v1,x2,v2,F1,F2); '-' for stdout");
-  sub->add_option("--every", opt->every, "Write every N-th step to the CSV")->check(CLI::PositiveNumber);
+  cvtcli::add_int(sub, "--every", opt->every, 1, 1000000000, "Write every N-th step to the CSV");
   sub->add_flag("--json", opt->json, "Print a JSON summary instead of the text one");
+  cvtcli::add_caps(sub, opt->caps, true, false);
 
   return [opt]() -> int {
     const Options& o = *opt;
     cvt::Method m{};
     if (!cvt::parse_method(o.integrator.c_str(), m))
       throw cvtcli::UsageError{"--integrator: unknown method '" + o.integrator + "'"};
-    if (!(o.t_end_s > 0) || !std::isfinite(o.t_end_s)) throw cvtcli::UsageError{"--t-end: must be > 0"};
-    if (!(o.dt_s > 0) || !std::isfinite(o.dt_s) || o.dt_s > o.t_end_s)
-      throw cvtcli::UsageError{"--dt: must be > 0 and <= --t-end"};
-    if (o.t_end_s / o.dt_s > 1e9) throw cvtcli::UsageError{"--t-end/--dt: more than 1e9 steps"};
+    if (o.dt_s > o.t_end_s) throw cvtcli::UsageError{"--dt: must be <= --t-end"};
+    cvtcli::require_steps(std::round(o.t_end_s / o.dt_s), o.caps, "--t-end / --dt");
+    if (o.json && o.csv == "-") throw cvtcli::UsageError{"--json and --csv - both write to stdout; give --csv a file"};
     if (o.scalar == "fixed" && o.dt_s < 4.0 / 65536.0)
-      throw cvtcli::UsageError{"--dt: q16.16 cannot represent steps below 6.1e-5 s to 2 % (use --dt >= 1e-3)"};
+      throw cvtcli::UsageError{"--dt: q16.16 steps are multiples of 2^-16 s; below 4 of them (6.1e-5 s) the "
+                               "increments are too coarse (use --dt >= 6.1e-5)"};
     const std::vector<double> x0 = cvtcli::parse_list(o.x0, 4, "--x0");
-    if (o.scalar == "fixed")
-      for (double v : x0)
-        if (std::fabs(v) > 1000.0) throw cvtcli::UsageError{"--x0: |value| > 1000 does not fit q16.16 with margin"};
     const auto fr = o.friction == "coulomb" ? cvt::friction_presets::oscillator_coulomb<double>()
                                              : cvt::friction_presets::oscillator_stribeck<double>();
+    if (o.scalar == "fixed") {
+      const double load = rhs_magnitude(cvt::OscillatorParams<double>::seed_section3(fr), x0.data());
+      if (load > kFixedHeadroom) {
+        char msg[200];
+        std::snprintf(msg, sizeof msg,
+                      "--x0: the right-hand side reaches %.4g at this state; q16.16 holds %.0f with the headroom "
+                      "its steps need (use --scalar double or float)",
+                      load, kFixedHeadroom);
+        throw cvtcli::UsageError{msg};
+      }
+    }
     std::FILE* csv = o.csv.empty() ? nullptr : cvtcli::open_output(o.csv);
     Summary s;
     if (o.scalar == "double") s = run<double>(o, fr, x0.data(), csv);
     else if (o.scalar == "float") s = run<float>(o, fr, x0.data(), csv);
     else s = run<cvt::q16_16>(o, fr, x0.data(), csv);
     cvtcli::close_output(csv);
+    // With the CSV on stdout the text summary goes to stderr: stdout holds data only.
+    std::FILE* info = csv == stdout ? stderr : stdout;
 
     const double x_eq = cvt::StickSlipOscillator<double>(cvt::OscillatorParams<double>::seed_section3(fr))
                             .sliding_equilibrium_m();
-    const char* behaviour = !s.finite ? "diverged" : s.settled ? "settled" : s.period_s > 0 ? "oscillating" : "moving";
+    const char* behaviour = !s.finite       ? "diverged"
+                            : s.saturated   ? "saturated"
+                            : s.settled     ? "settled"
+                            : s.period_s > 0 ? "oscillating"
+                                             : "moving";
     if (o.json) {
       nlohmann::json j;
       j["subcommand"] = "oscillator";
@@ -164,6 +219,7 @@ cvtcli::Action register_oscillator(CLI::App& app) {
       j["integrator"] = o.integrator;
       j["scalar"] = o.scalar;
       j["dt_s"] = o.dt_s;
+      j["dt_actual_s"] = s.dt_actual_s;
       j["t_end_s"] = o.t_end_s;
       j["steps"] = s.steps;
       j["final_state"] = {{"x1", s.final_state[0]}, {"v1", s.final_state[1]}, {"x2", s.final_state[2]},
@@ -179,20 +235,33 @@ cvtcli::Action register_oscillator(CLI::App& app) {
       j["ns_per_step"] = s.steps > 0 ? 1e9 * s.wall_s / static_cast<double>(s.steps) : 0.0;
       cvtcli::print_json(j);
     } else {
-      std::printf("Stick-slip oscillator (seed Eq. 9), %s friction, %s, dt = %g s, %s\n", o.friction.c_str(),
+      std::fprintf(info, "Stick-slip oscillator (seed Eq. 9), %s friction, %s, dt = %g s, %s\n", o.friction.c_str(),
                   o.integrator.c_str(), o.dt_s, o.scalar.c_str());
-      std::printf("  start      [x1 v1 x2 v2] = [%g %g %g %g]\n", x0[0], x0[1], x0[2], x0[3]);
-      std::printf("  after %g s [x1 v1 x2 v2] = [%.6f %.6f %.6f %.6f]\n", o.t_end_s, s.final_state[0],
+      std::fprintf(info, "  start      [x1 v1 x2 v2] = [%g %g %g %g]\n", x0[0], x0[1], x0[2], x0[3]);
+      std::fprintf(info, "  after %g s [x1 v1 x2 v2] = [%.6f %.6f %.6f %.6f]\n", o.t_end_s, s.final_state[0],
                   s.final_state[1], s.final_state[2], s.final_state[3]);
-      std::printf("  behaviour: %s", behaviour);
-      if (s.settled) std::printf(" (sliding equilibrium x* = %.6f m)", x_eq);
+      std::fprintf(info, "  behaviour: %s", behaviour);
+      if (s.settled) std::fprintf(info, " (sliding equilibrium x* = %.6f m)", x_eq);
       if (s.period_s > 0)
-        std::printf(" (period %.4f s, x1 peak-to-peak %.4f m over the last %g s)", s.period_s, s.x1_max - s.x1_min,
+        std::fprintf(info, " (period %.4f s, x1 peak-to-peak %.4f m over the last %g s)", s.period_s, s.x1_max - s.x1_min,
                     o.settle_window_s);
-      std::printf("\n  %ld steps in %.3f s wall (%.0f ns/step)\n", s.steps, s.wall_s,
+      std::fprintf(info, "\n  %ld steps in %.3f s wall (%.0f ns/step)\n", s.steps, s.wall_s,
                   s.steps > 0 ? 1e9 * s.wall_s / static_cast<double>(s.steps) : 0.0);
     }
-    return s.finite ? 0 : 1;
+    if (!s.finite || s.saturated) {
+      char buf[200];
+      if (!s.finite)
+        std::snprintf(buf, sizeof buf,
+                      "the state became non-finite at step %ld (t = %g s): the step is too large for this integrator",
+                      s.steps, static_cast<double>(s.steps) * s.dt_actual_s);
+      else
+        std::snprintf(buf, sizeof buf,
+                      "the state left the q16.16 range at step %ld (t = %g s): the right-hand side exceeds %.0f "
+                      "(use --scalar double or float)",
+                      s.steps, static_cast<double>(s.steps) * s.dt_actual_s, kFixedHeadroom);
+      throw cvtcli::RunError{buf};
+    }
+    return 0;
   };
 }
 

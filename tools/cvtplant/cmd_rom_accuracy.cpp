@@ -13,6 +13,7 @@
 
 #include "commands.hpp"
 #include "io_util.hpp"
+#include "options.hpp"
 #include "registry.hpp"
 #include "scene_file.hpp"
 #include "scene_simulator.hpp"
@@ -89,24 +90,27 @@ cvtcli::Action register_rom_accuracy(CLI::App& app) {
     double t_end_s = 10, frame_s = 1e-3;
     int ref_substeps = 1000;
     bool json = false;
+    cvtcli::Caps caps;
   };
   auto opt = std::make_shared<Opt>();
   CLI::App* sub = app.add_subcommand(
       "rom-accuracy", "Relative RMS error of integrator settings vs a converged reference (docs/rom.md)");
   sub->add_option("--scene", opt->scene, "Built-in scene or scene file")->required();
-  sub->add_option("--t-end", opt->t_end_s, "Simulated time [s]");
-  sub->add_option("--dt", opt->frame_s, "Frame step [s]");
+  cvtcli::add_real(sub, "--t-end", opt->t_end_s, {0, 1e5, true}, "Simulated time [s]");
+  cvtcli::add_real(sub, "--dt", opt->frame_s, {1e-7, 1}, "Frame step [s], at most --t-end");
   sub->add_option("--scalar", opt->scalar, "Scalar of the candidates: double | float | fixed")
       ->check(CLI::IsMember({"double", "float", "fixed"}));
-  sub->add_option("--ref-substeps", opt->ref_substeps, "Reference: ros2 in double with this many substeps per frame")
-      ->check(CLI::PositiveNumber);
-  sub->add_option("--candidates", opt->candidates, "Comma-separated METHOD:SUBSTEPS list");
+  cvtcli::add_int(sub, "--ref-substeps", opt->ref_substeps, 1, 100000,
+                  "Reference: ros2 in double with this many substeps per frame");
+  sub->add_option("--candidates", opt->candidates, "Comma-separated METHOD:SUBSTEPS list (substeps 1..100000)");
   sub->add_flag("--json", opt->json, "JSON output");
+  cvtcli::add_caps(sub, opt->caps, true, true);
   return [opt]() -> int {
     auto loaded = cvtcli::resolve_scene(opt->scene);
     cvt::Scene s = loaded->scene;
     s.t_end_s = opt->t_end_s;
-    if (!(opt->frame_s > 0) || !(opt->t_end_s > 0)) throw cvtcli::UsageError{"--dt/--t-end: must be > 0"};
+    // A frame longer than the run would compare nothing.
+    if (opt->frame_s > opt->t_end_s) throw cvtcli::UsageError{"--dt: must be <= --t-end"};
     s.frame_s = opt->frame_s;
     const cvt::ScalarKind sk = opt->scalar == "double" ? cvt::ScalarKind::f64
                                : opt->scalar == "float" ? cvt::ScalarKind::f32
@@ -122,12 +126,27 @@ cvtcli::Action register_rom_accuracy(CLI::App& app) {
       const auto colon = item.find(':');
       cvt::Method m{};
       const std::string mn = item.substr(0, colon);
-      if (!cvt::parse_method(mn.c_str(), m)) throw cvtcli::UsageError{"--candidates: unknown method '" + mn + "'"};
-      int n = 1;
-      if (colon != std::string::npos) n = static_cast<int>(cvtcli::parse_finite(item.substr(colon + 1), "--candidates"));
-      if (n < 1 || n > 100000) throw cvtcli::UsageError{"--candidates: substeps must be in 1..100000"};
-      cands.push_back({m, n});
+      if (!cvt::parse_method(mn.c_str(), m))
+        throw cvtcli::UsageError{"--candidates: unknown method " + cvtcli::quoted(mn)};
+      long long n = 1;
+      if (colon != std::string::npos) {
+        const std::string why = cvtcli::check_int(item.substr(colon + 1), 1, 100000, &n);
+        if (!why.empty()) throw cvtcli::UsageError{"--candidates: substeps " + why};
+      }
+      cands.push_back({m, static_cast<int>(n)});
     }
+    if (cands.empty()) throw cvtcli::UsageError{"--candidates: empty list"};
+    // Work and memory, estimated before anything runs: the reference and every
+    // candidate step every frame; the reference's trace and one candidate's
+    // (4 signals of 8 bytes per frame each) are held at once.
+    const double frames = static_cast<double>(cvt::scene_frames(s));
+    double substeps = opt->ref_substeps;
+    for (const Cand& c : cands) substeps += c.substeps;
+    cvtcli::require_steps(frames * substeps, opt->caps,
+                          cvtcli::fmt_count(frames) + " frames x " + cvtcli::fmt_count(substeps) +
+                              " substeps of the reference and the candidates");
+    cvtcli::require_memory(2 * 4 * 8 * (frames + 1), opt->caps,
+                           "two traces of 4 signals x " + cvtcli::fmt_count(frames) + " frames");
     cvtcli::check_scene_simulator(s, cvt::ScalarKind::f64);
     cvtcli::check_scene_simulator(s, sk, std::string("--scalar ") + opt->scalar + ": ");
     cvt::RomSimConfig rc = cvt::sim_config_of(s);
@@ -135,7 +154,8 @@ cvtcli::Action register_rom_accuracy(CLI::App& app) {
     rc.substeps = opt->ref_substeps;
     rc.watchdog_energy = false;
     const Trace ref = collect(s, cvt::ScalarKind::f64, rc);
-    if (ref.fault != cvt::RomFault::none) throw cvtcli::RunError{"the reference run faulted"};
+    if (ref.fault != cvt::RomFault::none)
+      throw cvtcli::RunError{std::string("the reference run faulted: ") + cvt::rom_fault_name(ref.fault)};
 
     nlohmann::json rows = nlohmann::json::array();
     if (!opt->json)

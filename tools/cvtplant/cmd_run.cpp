@@ -10,6 +10,7 @@
 
 #include "commands.hpp"
 #include "io_util.hpp"
+#include "options.hpp"
 #include "registry.hpp"
 #include "scene_file.hpp"
 #include "scene_simulator.hpp"
@@ -102,7 +103,8 @@ struct Runner {
         r.final_slip = d(o.slip);
         r.final_torque = d(o.torque_transmitted_Nm);
       }
-      return true;
+      // A failed write (closed pipe, full disk) stops the run; the caller reports it.
+      return cvtcli::output_ok(csv);
     };
     const auto t0 = std::chrono::steady_clock::now();
     r.fault = cvt::run_frames(simulator, scene, scene.frame_s, on_frame);
@@ -123,6 +125,7 @@ struct Options {
   std::string integrator, scalar, csv;
   int every = 1;
   bool json = false;
+  cvtcli::Caps caps;
 };
 
 cvtcli::Action register_run(CLI::App& app) {
@@ -130,29 +133,24 @@ cvtcli::Action register_run(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("run", "Run a scene of the reduced-order CVT plant (docs/rom.md)");
   sub->add_option("--scene", opt->scene, "Built-in scene name (see `cvtplant scenes`) or a TOML scene file")
       ->required();
-  sub->add_option("--t-end", opt->t_end_s, "Simulated time [s] (default: the scene's)");
-  sub->add_option("--dt", opt->dt_s, "Frame step [s] (default: the scene's, 1e-3)");
-  sub->add_option("--substeps", opt->substeps, "Integrator steps per frame (default: the scene's)");
+  cvtcli::add_real(sub, "--t-end", opt->t_end_s, {0, 1e5, true}, "Simulated time [s] (default: the scene's)");
+  cvtcli::add_real(sub, "--dt", opt->dt_s, {1e-7, 1}, "Frame step [s] (default: the scene's, 1e-3)");
+  cvtcli::add_int(sub, "--substeps", opt->substeps, 1, 10000, "Integrator steps per frame (default: the scene's)");
   sub->add_option("--integrator", opt->integrator,
                   "euler | semi-implicit-euler | heun | rk4 | linear-implicit-euler | ros2 (default: the scene's)");
   sub->add_option("--scalar", opt->scalar, "double | float | fixed (q16.16) (default: the scene's)")
       ->check(CLI::IsMember({"double", "float", "fixed"}));
   sub->add_option("--csv", opt->csv, "Write the frames as CSV ('-' for stdout)");
-  sub->add_option("--every", opt->every, "Write every N-th frame to the CSV")->check(CLI::PositiveNumber);
+  cvtcli::add_int(sub, "--every", opt->every, 1, 1000000000, "Write every N-th frame to the CSV");
   sub->add_flag("--json", opt->json, "Print a JSON summary instead of the text one");
+  cvtcli::add_caps(sub, opt->caps, true, false);
 
   return [opt, sub]() -> int {
     const Options& o = *opt;
     auto loaded = cvtcli::resolve_scene(o.scene);
     cvt::Scene s = loaded->scene;
-    if (sub->count("--t-end") > 0) {
-      if (!(o.t_end_s > 0) || !std::isfinite(o.t_end_s)) throw cvtcli::UsageError{"--t-end: must be > 0"};
-      s.t_end_s = o.t_end_s;
-    }
-    if (sub->count("--dt") > 0) {
-      if (!(o.dt_s > 0) || !std::isfinite(o.dt_s)) throw cvtcli::UsageError{"--dt: must be > 0"};
-      s.frame_s = o.dt_s;
-    }
+    if (sub->count("--t-end") > 0) s.t_end_s = o.t_end_s;
+    if (sub->count("--dt") > 0) s.frame_s = o.dt_s;
     if (sub->count("--substeps") > 0) s.substeps = o.substeps;
     if (!o.integrator.empty() && !cvt::parse_method(o.integrator.c_str(), s.method))
       throw cvtcli::UsageError{"--integrator: unknown method '" + o.integrator + "'"};
@@ -161,18 +159,24 @@ cvtcli::Action register_run(CLI::App& app) {
     if (o.scalar == "fixed") s.scalar = cvt::ScalarKind::q16_16;
     const cvt::SceneIssue issue = cvt::validate_scene(s);
     if (!issue.ok) throw cvtcli::UsageError{std::string(issue.field) + ": " + issue.message};
-    if (s.t_end_s / s.frame_s > 1e9) throw cvtcli::UsageError{"--t-end/--dt: more than 1e9 frames"};
+    if (o.json && o.csv == "-") throw cvtcli::UsageError{"--json and --csv - both write to stdout; give --csv a file"};
+    const double frames = static_cast<double>(cvt::scene_frames(s));
+    cvtcli::require_steps(frames * s.substeps, o.caps,
+                          cvtcli::fmt_count(frames) + " frames x " + std::to_string(s.substeps) + " substeps");
     // q16.16 steps in units of 2^-10 s (docs/rom.md#fixed-point); 32 LSB of
     // that unit keep the rounding of the substep under 2 %.
     if (s.scalar == cvt::ScalarKind::q16_16 && s.frame_s / s.substeps / cvt::RomUnits<cvt::q16_16>::time_s < 32.0 / 65536.0)
       throw cvtcli::UsageError{"--dt: q16.16 cannot represent substeps below 4.8e-7 s to 2 %"};
 
-    std::FILE* csv = o.csv.empty() ? nullptr : cvtcli::open_output(o.csv);
+    std::vector<std::string> inputs;
+    if (loaded->source != "built-in") inputs.push_back(loaded->source);
+    std::FILE* csv = o.csv.empty() ? nullptr : cvtcli::open_output(o.csv, "--csv", inputs);
     const Result r = cvtcli::with_scene_simulator(s, s.scalar, cvt::sim_config_of(s), Runner{s, csv, o.every});
     cvtcli::close_output(csv);
+    // With the CSV on stdout the text summary goes to stderr: stdout holds data only.
+    std::FILE* info = csv == stdout ? stderr : stdout;
 
-    const double frames = static_cast<double>(std::max<long>(1, r.frames));
-    const double ns_frame = 1e9 * r.wall_s / frames;
+    const double ns_frame = 1e9 * r.wall_s / static_cast<double>(std::max<long>(1, r.frames));
     const double rel = r.scale > 0 ? r.residual / r.scale : 0.0;
     if (o.json) {
       nlohmann::json j;
@@ -203,18 +207,23 @@ cvtcli::Action register_run(CLI::App& app) {
       j["ns_per_step"] = ns_frame / s.substeps;
       cvtcli::print_json(j);
     } else {
-      std::printf("Scene %s (%s): features %s, %s, %s, dt = %g s x %d substeps\n", loaded->name.c_str(),
+      std::fprintf(info, "Scene %s (%s): features %s, %s, %s, dt = %g s x %d substeps\n", loaded->name.c_str(),
                   loaded->source.c_str(), cvtcli::feature_names(s.features).c_str(), cvt::scalar_kind_name(s.scalar),
                   cvt::method_name(s.method), s.frame_s, s.substeps);
-      std::printf("  %ld frames to t = %g s, fault: %s\n", r.frames, r.t_end_s, cvt::rom_fault_name(r.fault));
-      std::printf("  final: omega1 = %.4f rad/s, omega2 = %.4f rad/s, F_ax = %.1f N, slip = %.5f\n", r.final_w1,
+      std::fprintf(info, "  %ld frames to t = %g s, fault: %s\n", r.frames, r.t_end_s, cvt::rom_fault_name(r.fault));
+      std::fprintf(info, "  final: omega1 = %.4f rad/s, omega2 = %.4f rad/s, F_ax = %.1f N, slip = %.5f\n", r.final_w1,
                   r.final_w2, r.final_fax, r.final_slip);
-      std::printf("  energy: in %.4g J, actuator %.4g J, load %.4g J, friction %.4g J, damping %.4g J, "
+      std::fprintf(info, "  energy: in %.4g J, actuator %.4g J, load %.4g J, friction %.4g J, damping %.4g J, "
                   "stored %.4g -> %.4g J, residual %.3g J (%.2e of the flows)\n",
                   r.input, r.actuator, r.load, r.friction, r.damping, r.stored0, r.stored, r.residual, rel);
-      std::printf("  %.0f ns/frame (%.3f s wall)\n", ns_frame, r.wall_s);
+      std::fprintf(info, "  %.0f ns/frame (%.3f s wall)\n", ns_frame, r.wall_s);
     }
-    return r.fault == cvt::RomFault::none ? 0 : 1;
+    if (r.fault != cvt::RomFault::none) {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, " at t = %g s (frame %ld)", r.t_end_s, r.frames);
+      throw cvtcli::RunError{std::string("the plant faulted: ") + cvt::rom_fault_name(r.fault) + buf};
+    }
+    return 0;
   };
 }
 

@@ -1,12 +1,90 @@
 // The offline front door: `cvtplant <subcommand> ...` (docs/cli.md).
+#include <algorithm>
+#include <cerrno>
+#include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <exception>
+#include <iostream>
 #include <vector>
 
 #include "commands.hpp"
+#include "io_util.hpp"
+#include "options.hpp"
 #include "registry.hpp"
 
+namespace {
+
+// Edit distance, for "did you mean" on a mistyped subcommand.
+std::size_t distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// A word where a subcommand is expected that names none: the message lists
+// them and suggests the nearest. Empty if the command line is fine here.
+std::string unknown_subcommand(CLI::App& app, int argc, char** argv) {
+  CLI::App* level = &app;
+  std::string where = "cvtplant";
+  for (int i = 1; i < argc; ++i) {
+    const std::string word = argv[i];
+    if (word.empty() || word[0] == '-') return {};
+    const auto subs = level->get_subcommands([](CLI::App*) { return true; });
+    if (subs.empty()) return {};
+    CLI::App* next = nullptr;
+    std::string names, best;
+    std::size_t best_d = 1000;
+    for (CLI::App* s : subs) {
+      if (s->get_name() == word) next = s;
+      names += (names.empty() ? "" : ", ") + s->get_name();
+      const std::size_t d = distance(word.substr(0, 64), s->get_name());
+      if (d < best_d) best_d = d, best = s->get_name();
+    }
+    if (next == nullptr) {
+      std::string msg = where + ": error: unknown subcommand " + cvtcli::quoted(word);
+      if (best_d <= 2 || (best.size() > 4 && best.rfind(word.substr(0, 3), 0) == 0 && word.size() >= 3))
+        msg += " (did you mean '" + best + "'?)";
+      return msg + "; subcommands: " + names;
+    }
+    level = next;
+    where += " " + word;
+  }
+  return {};
+}
+
+// Data written to stdout must have reached it: a closed pipe or a full disk
+// fails the run (exit 1) instead of passing silently. A run that already
+// failed (exit 1) has said so once.
+int finish_stdout(const std::string& where, int code) {
+  cvtcli::output_ok(stdout);
+  errno = 0;
+  std::cout.flush();
+  const bool bad = std::fflush(stdout) != 0 || std::ferror(stdout) != 0 || !std::cout.good();
+  if (bad && code != 1) {
+    std::fprintf(stderr, "%s: failed: writing to stdout failed: %s\n", where.c_str(),
+                 cvtcli::write_error_reason(errno).c_str());
+    return 1;
+  }
+  return code;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  // A reader that closes the pipe early (`| head`) makes writes fail with
+  // EPIPE, which the run reports, instead of killing the process silently.
+  std::signal(SIGPIPE, SIG_IGN);
+
   CLI::App app{"cvtplant: CVT plant models, scenes and nonlinear analysis (offline tools)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "cvtplant 0.1.0");
@@ -17,36 +95,57 @@ int main(int argc, char** argv) {
     actions.emplace_back(app.get_subcommands({}).back(), std::move(act));
   }
 
+  if (const std::string msg = unknown_subcommand(app, argc, argv); !msg.empty()) {
+    std::fprintf(stderr, "%s\n", msg.c_str());
+    return 2;
+  }
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
+    return finish_stdout("cvtplant", app.exit(e));
   } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
+    return finish_stdout("cvtplant", app.exit(e));
   } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
+    return finish_stdout("cvtplant", app.exit(e));
   } catch (const CLI::ParseError& e) {
     // One line, exit 2, whatever CLI11's own code would be (docs/cli.md).
     std::string where = "cvtplant";
-    for (auto* sub : app.get_subcommands()) where += " " + sub->get_name();
-    std::fprintf(stderr, "%s: error: %s (see --help)\n", where.c_str(), e.what());
+    for (const CLI::App* sub = &app; !sub->get_subcommands().empty();) {
+      sub = sub->get_subcommands().front();
+      where += " " + sub->get_name();
+    }
+    std::string what = e.what();
+    for (char& c : what)
+      if (c == '\n') c = ' ';
+    std::fprintf(stderr, "%s: error: %s (see --help)\n", where.c_str(), what.c_str());
     return 2;
   }
 
   for (auto& [sub, act] : actions) {
     if (!sub->parsed()) continue;
-    try {
-      return act();
-    } catch (const cvtcli::UsageError& e) {
-      std::fprintf(stderr, "cvtplant %s: error: %s\n", sub->get_name().c_str(), e.message.c_str());
-      return 2;
-    } catch (const cvtcli::RunError& e) {
-      std::fprintf(stderr, "cvtplant %s: failed: %s\n", sub->get_name().c_str(), e.message.c_str());
-      return 1;
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "cvtplant %s: internal error: %s\n", sub->get_name().c_str(), e.what());
-      return 1;
+    std::string where = "cvtplant " + sub->get_name();
+    for (const CLI::App* s = sub; !s->get_subcommands().empty();) {
+      s = s->get_subcommands().front();
+      where += " " + s->get_name();
     }
+    int code = 1;
+    try {
+      code = act();
+    } catch (const cvtcli::UsageError& e) {
+      std::fprintf(stderr, "%s: error: %s\n", where.c_str(), e.message.c_str());
+      code = 2;
+    } catch (const cvtcli::RunError& e) {
+      std::fprintf(stderr, "%s: failed: %s\n", where.c_str(), e.message.c_str());
+      code = 1;
+    } catch (const std::bad_alloc&) {
+      std::fprintf(stderr, "%s: failed: out of memory (lower the run's size, see --max-memory-mb)\n", where.c_str());
+      code = 1;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "%s: internal error: %s\n", where.c_str(), e.what());
+      code = 1;
+    }
+    return finish_stdout(where, code);
   }
   return 2;
 }

@@ -1,15 +1,16 @@
 #include "scene_file.hpp"
 
+#include <sys/stat.h>
 #include <toml++/toml.h>
 
 #include <cmath>
-#include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
 #include <vector>
 
 #include "commands.hpp"
+#include "io_util.hpp"
+#include "options.hpp"
 #include "cvtplant/scene/builtin_scenes.hpp"
 
 namespace cvtcli {
@@ -51,7 +52,7 @@ class Reader {
   void check_known(const toml::table& t, const std::string& prefix, const std::set<std::string>& known) const {
     for (const auto& [k, node] : t) {
       const std::string key(k.str());
-      if (known.count(key) == 0) fail(node.source(), prefix + key, "unknown field");
+      if (known.count(key) == 0) fail(node.source(), quoted(prefix + key), "unknown field");
     }
   }
 
@@ -106,7 +107,7 @@ class Reader {
       if (!found) {
         std::string all;
         for (int i = 0; i < count; ++i) all += std::string(i ? ", " : "") + names[i].name;
-        fail(e.source(), key, "unknown name '" + s + "' (known: " + all + ")");
+        fail(e.source(), key, "unknown name " + quoted(s) + " (known: " + all + ")");
       }
     }
     return bits;
@@ -156,7 +157,7 @@ class Reader {
         p.v[i] = *b;
       }
     } else {
-      fail(t.source(), prefix + "kind", "unknown profile kind '" + kind + "' (constant, step, ramp, sine, table)");
+      fail(t.source(), prefix + "kind", "unknown profile kind " + quoted(kind) + " (constant, step, ramp, sine, table)");
     }
     lines_[std::string(key)] = t.source().begin.line;
     return p;
@@ -172,17 +173,17 @@ class Reader {
     else if (preset == "table2_case2") f = cvt::friction_presets::table2_case2<double>();
     else if (!preset.empty())
       fail(t.get("preset")->source(), pre + "preset",
-           "unknown preset '" + preset + "' (oscillator_coulomb, oscillator_stribeck, table2_case1, table2_case2)");
+           "unknown preset " + quoted(preset) + " (oscillator_coulomb, oscillator_stribeck, table2_case1, table2_case2)");
     const std::string law = text(t, pre, "law", "");
     if (law == "constant") f.law = cvt::FrictionLaw::constant;
     else if (law == "case1") f.law = cvt::FrictionLaw::case1;
     else if (law == "case2") f.law = cvt::FrictionLaw::case2;
-    else if (!law.empty()) fail(t.get("law")->source(), pre + "law", "unknown law '" + law + "' (constant, case1, case2)");
+    else if (!law.empty()) fail(t.get("law")->source(), pre + "law", "unknown law " + quoted(law) + " (constant, case1, case2)");
     const std::string sign = text(t, pre, "sign", "");
     if (sign == "atan") f.sign = cvt::SignFunction::atan;
     else if (sign == "tanh") f.sign = cvt::SignFunction::tanh;
     else if (sign == "exact") f.sign = cvt::SignFunction::exact;
-    else if (!sign.empty()) fail(t.get("sign")->source(), pre + "sign", "unknown sign '" + sign + "' (atan, tanh, exact)");
+    else if (!sign.empty()) fail(t.get("sign")->source(), pre + "sign", "unknown sign " + quoted(sign) + " (atan, tanh, exact)");
     f.mu0 = number(t, pre, "mu0", f.mu0);
     f.a = number(t, pre, "a", f.a);
     f.b_m_s = number(t, pre, "b_m_s", f.b_m_s);
@@ -198,7 +199,7 @@ class Reader {
     check_known(t, pre,
                 {"r1_m", "r2_m", "beta0_deg", "center_distance_m", "J1_kgm2", "J2_kgm2", "lump_mass_kg", "k1_N_m",
                  "c1_Ns_m", "k2_N_m", "c2_Ns_m", "entry_load_share", "normal_load_factor", "hold_driver_speed", "hold_driven_speed", "stick_speed_m_s",
-                 "actuator_tau_s", "clamp_max_N", "sheave_mass_kg", "sheave_damping_Ns_m", "K_ax_N_m", "road_T0_Nm",
+                 "speed_limit_rad_s", "actuator_tau_s", "clamp_max_N", "sheave_mass_kg", "sheave_damping_Ns_m", "K_ax_N_m", "road_T0_Nm",
                  "road_cv_Nms_rad", "road_ca_Nms2_rad2", "road_w_eps_rad_s", "zeta1_rad", "zeta2_rad", "pitch_m",
                  "driven_clamp_N", "radial_mass_kg", "radial_damping_Ns_m", "radial_travel_m", "radial_stop_N_m"});
     p.r1_m = number(t, pre, "r1_m", p.r1_m);
@@ -217,6 +218,7 @@ class Reader {
     p.hold_driver_speed = boolean(t, pre, "hold_driver_speed", p.hold_driver_speed);
     p.hold_driven_speed = boolean(t, pre, "hold_driven_speed", p.hold_driven_speed);
     p.stick_speed_m_s = number(t, pre, "stick_speed_m_s", p.stick_speed_m_s);
+    p.speed_limit_rad_s = number(t, pre, "speed_limit_rad_s", p.speed_limit_rad_s);
     p.actuator_tau_s = number(t, pre, "actuator_tau_s", p.actuator_tau_s);
     p.clamp_max_N = number(t, pre, "clamp_max_N", p.clamp_max_N);
     p.sheave_mass_kg = number(t, pre, "sheave_mass_kg", p.sheave_mass_kg);
@@ -251,7 +253,7 @@ class Reader {
     const std::string base = text(root_, "", "base", "");
     if (!base.empty()) {
       const cvt::Scene* b = cvt::find_builtin_scene(base.c_str());
-      if (b == nullptr) fail(root_.get("base")->source(), "base", "no built-in scene '" + base + "' (see cvtplant scenes)");
+      if (b == nullptr) fail(root_.get("base")->source(), "base", "no built-in scene " + quoted(base) + " (see cvtplant scenes)");
       s = *b;
     }
     out.name = text(root_, "", "name", base.empty() ? std::string("unnamed") : base);
@@ -265,13 +267,13 @@ class Reader {
     s.substeps = static_cast<int>(sub);
     const std::string integ = text(root_, "", "integrator", cvt::method_name(s.method));
     if (!cvt::parse_method(integ.c_str(), s.method))
-      fail_field("integrator", "unknown method '" + integ +
-                                   "' (euler, semi-implicit-euler, heun, rk4, linear-implicit-euler, ros2)");
+      fail_field("integrator", "unknown method " + quoted(integ) +
+                                   " (euler, semi-implicit-euler, heun, rk4, linear-implicit-euler, ros2)");
     const std::string scalar = text(root_, "", "scalar", cvt::scalar_kind_name(s.scalar));
     if (scalar == "double") s.scalar = cvt::ScalarKind::f64;
     else if (scalar == "float") s.scalar = cvt::ScalarKind::f32;
     else if (scalar == "fixed") s.scalar = cvt::ScalarKind::q16_16;
-    else fail_field("scalar", "unknown scalar '" + scalar + "' (double, float, fixed)");
+    else fail_field("scalar", "unknown scalar " + quoted(scalar) + " (double, float, fixed)");
 
     cvt::RomParams& p = s.params;
     if (const toml::table* t = table(root_, "", "params")) params(*t, p);
@@ -318,29 +320,34 @@ class Reader {
 
 namespace {
 
-toml::table parse_toml_file(const std::string& path, const char* what) {
-  std::ifstream in(path);
-  if (!in) throw UsageError{path + ": cannot read the " + std::string(what)};
-  std::stringstream buf;
-  buf << in.rdbuf();
-  // Tools build with exceptions on, so toml++ reports syntax errors by throwing.
+// toml++ reports syntax errors by throwing (tools build with exceptions on);
+// a refusal names the file and line. `what`: the option that named the file.
+toml::table parse_toml_text(const std::string& text, const std::string& path) {
   try {
-    return toml::parse(buf.str(), path);
+    return toml::parse(text, path);
   } catch (const toml::parse_error& e) {
-    throw UsageError{path + ":" + std::to_string(e.source().begin.line) + ": syntax: " + std::string(e.description())};
+    throw UsageError{path + ":" + std::to_string(e.source().begin.line) + ": syntax: " +
+                     quoted(std::string(e.description()), 200)};
   }
 }
 
 }  // namespace
 
 void apply_params_file(const std::string& path, cvt::Scene& s) {
-  const toml::table root = parse_toml_file(path, "parameter file");
+  const toml::table root = parse_toml_text(read_input_file(path, kMaxSceneFileBytes, "parameter file"), path);
   Reader r(path, root);
   r.read_params_only(s);
 }
 
 std::shared_ptr<LoadedScene> load_scene_file(const std::string& path) {
-  const toml::table root = parse_toml_file(path, "scene file");
+  return parse_scene_text(read_input_file(path, kMaxSceneFileBytes, "--scene"), path);
+}
+
+std::shared_ptr<LoadedScene> parse_scene_text(const std::string& text, const std::string& path) {
+  const toml::table root = parse_toml_text(text, path);
+  // An empty document would run the all-default scene: almost surely the
+  // wrong file (or /dev/null), so it is refused.
+  if (root.empty()) throw UsageError{"--scene: " + quoted(path, 200) + " has no keys: not a scene file"};
   auto out = std::make_shared<LoadedScene>();
   Reader r(path, root);
   r.read(*out);
@@ -361,9 +368,10 @@ std::shared_ptr<LoadedScene> resolve_scene(const std::string& name_or_path) {
     out->scene.summary = out->summary.c_str();
     return out;
   }
-  std::ifstream probe(name_or_path);
-  if (!probe)
-    throw UsageError{"--scene: '" + name_or_path + "' is neither a built-in scene (see `cvtplant scenes`) nor a readable file"};
+  struct stat st {};
+  if (::stat(name_or_path.c_str(), &st) != 0)
+    throw UsageError{"--scene: " + quoted(name_or_path, 200) +
+                     " is neither a built-in scene (see `cvtplant scenes`) nor a readable file"};
   return load_scene_file(name_or_path);
 }
 

@@ -2,6 +2,7 @@
 // Scene files (TOML) for the offline tool (docs/rom.md#scene-files). Errors
 // name the file, the line and the field; every value is checked by
 // cvt::validate_scene before a run.
+#include <cstddef>
 #include <memory>
 #include <string>
 
@@ -15,8 +16,14 @@ struct LoadedScene {
   std::string name, summary, source;  // source: "built-in" or the file path
 };
 
+// Scene files are a few kB (three profiles of at most 16 points); a larger
+// input is refused before it is parsed.
+inline constexpr std::size_t kMaxSceneFileBytes = 1 << 20;
+
 // Reads and validates a scene file; throws UsageError("FILE:LINE: FIELD: why").
 std::shared_ptr<LoadedScene> load_scene_file(const std::string& path);
+// The same on a document already read; `path` names it in messages.
+std::shared_ptr<LoadedScene> parse_scene_text(const std::string& text, const std::string& path);
 
 // Applies a parameter file (a TOML file with a [params] table of RomParams
 // fields, as `cvtplant calibrate --out` writes) to s; throws UsageError like

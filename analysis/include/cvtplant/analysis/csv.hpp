@@ -3,6 +3,7 @@
 // (docs/analysis.md#input). Separators: ',' (also accepts ';' and tabs when the
 // header contains no comma). Blank lines and lines starting with '#' are skipped.
 // Every error names the file and the 1-based line number.
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -13,9 +14,12 @@ struct CsvColumn {
   std::vector<double> values;
 };
 
-// Throws InputError: unreadable file, empty file, missing column (the message
-// lists the columns present), short row, non-numeric cell, NaN or infinity.
-CsvColumn read_csv_column(const std::string& path, const std::string& column);
+// Throws InputError: unreadable file, a directory or device, empty file,
+// missing column (the message lists the columns present), short row,
+// non-numeric cell (quoted up to 40 characters), NaN or infinity; LimitError
+// once more than `max_bytes` have been read (0: no cap), so an endless
+// stream such as /dev/zero stops.
+CsvColumn read_csv_column(const std::string& path, const std::string& column, std::size_t max_bytes = 0);
 
 // Header names of a CSV file (for --help style listings and error messages).
 std::vector<std::string> read_csv_header(const std::string& path);

@@ -10,4 +10,12 @@ struct InputError : std::runtime_error {
   explicit InputError(const std::string& what) : std::runtime_error(what) {}
 };
 
+// A run whose work or input, measured before the analysis starts, exceeds
+// the caller's cap (BenettinOptions::max_steps, the byte cap of
+// read_csv_column). The CLI names the flag that raises it.
+struct LimitError : InputError {
+  LimitError(const std::string& what, double needed_amount) : InputError(what), needed(needed_amount) {}
+  double needed;  // steps or bytes
+};
+
 }  // namespace cvt::analysis

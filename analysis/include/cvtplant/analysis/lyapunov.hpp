@@ -12,10 +12,12 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "cvtplant/analysis/errors.hpp"
 #include "cvtplant/analysis/series.hpp"
 #include "cvtplant/integrate/explicit_rk.hpp"
 
@@ -28,7 +30,22 @@ struct BenettinOptions {
   double t_end = 1000;         // accumulation length
   double t_renorm = -1;        // QR interval (flows); -1: max(dt, 0.05) rounded to whole steps
   int batches = 20;            // batch means for the confidence interval
+  // Cap on the steps (maps: iterations) of one run, checked before it
+  // starts (LimitError); 0: only the 1e15 that keeps the counts exact.
+  double max_steps = 0;
 };
+
+namespace detail {
+// Refuses, before any step, a run whose step count exceeds the cap.
+inline void check_work(double steps, const BenettinOptions& opt, double dt) {
+  const double cap = opt.max_steps > 0 && opt.max_steps < 1e15 ? opt.max_steps : 1e15;
+  if (!(steps <= cap)) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "lyapunov: the run needs %.3g steps (dt %g), above the cap of %g", steps, dt, cap);
+    throw LimitError(buf, steps);
+  }
+}
+}  // namespace detail
 
 struct ConvergenceRow {
   double t = 0;
@@ -162,6 +179,7 @@ SpectrumResult lyapunov_flow(const Flow& sys, const Eigen::Matrix<double, Flow::
   if (!(opt.dt > 0) || !(opt.t_end > 0) || opt.t_transient < 0 || opt.t_warmup < 0)
     throw std::invalid_argument("lyapunov: need dt > 0, t_end > 0, t_transient >= 0, t_warmup >= 0");
   if (opt.batches < 2) throw std::invalid_argument("lyapunov: need at least 2 batches");
+  detail::check_work((opt.t_transient + opt.t_warmup + opt.t_end) / opt.dt, opt, opt.dt);
   SpectrumResult r;
   const double h = opt.dt;
   const long renorm_steps =
@@ -282,6 +300,7 @@ SpectrumResult lyapunov_map(const Map& sys, const Eigen::Matrix<double, Map::kSt
   using M = Eigen::Matrix<double, N, N>;
   if (!(opt.t_end >= opt.batches) || opt.t_transient < 0 || opt.t_warmup < 0)
     throw std::invalid_argument("lyapunov: maps need t_end >= batches iterations");
+  detail::check_work(opt.t_transient + opt.t_warmup + opt.t_end, opt, 1);
   SpectrumResult r;
   r.is_map = true;
   r.dt = 1;

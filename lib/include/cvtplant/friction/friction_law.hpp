@@ -14,6 +14,7 @@
 
 #include "cvtplant/math/detmath.hpp"
 #include "cvtplant/physics/seed.hpp"
+#include "cvtplant/scalar/fixed.hpp"
 
 namespace cvt {
 
@@ -169,6 +170,23 @@ FrictionEval<T> friction_characteristic_and_slope(const FrictionParams<T>& p, co
     case SignFunction::atan:
     default: {
       const T lv = p.lambda_s_m * v_rel_m_s;
+      if constexpr (is_fixed_point_v<T>) {
+        // Scaling and overflow (fixed point): (lambda v)^2 leaves the Q range
+        // above |lambda v| = 181 and saturated to 32768, which left a spurious
+        // slope of the sign, 2/pi lambda / 32768 (0.19 s/m at lambda = 1e4;
+        // 0.049 s/m of phi at mu = 0.25), at every faster slip: a Jacobian
+        // coupling of the lumps to the pulley speeds that does not exist, and
+        // in gross slip the fixed-point step settled the lumps 21 LSB away
+        // from their steady state. Above |lambda v| = 128 the
+        // slope is 2/pi (lambda / |lambda v|) / |lambda v| / (1 + (lambda v)^-2),
+        // divisions whose results stay in range (0.39 s/m at most).
+        const T alv = abs(lv);
+        if (alv > T(128)) {
+          const T q = T(1) / alv;
+          ds = T(kTwoOverPi) * ((p.lambda_s_m / alv) / alv) / (T(1) + q * q);
+          break;
+        }
+      }
       ds = T(kTwoOverPi) * p.lambda_s_m / (T(1) + lv * lv);
       break;
     }

@@ -19,6 +19,7 @@
 // block-eliminated solver (plant/rom_step.hpp).
 #include <Eigen/LU>
 
+#include "cvtplant/integrate/increment.hpp"
 #include "cvtplant/integrate/system.hpp"
 
 namespace cvt {
@@ -42,17 +43,27 @@ class DenseWSolver {
 // keep their order for any J: ROS2 is a W-method, linearly implicit Euler is
 // first order anyway; docs/numerics.md#rosenbrock). `f` holds f(x_n) on
 // entry and is used as scratch.
+// The final increment is as written for floating point; fixed point forms
+// h (3 k1 + k2) / 2 exactly and rounds it once, with the remainder carried
+// to the next step when `carry` is given (integrate/increment.hpp).
 template <class Sys, class WSolver>
 void step_linear_implicit_euler_with(const Sys& sys, StateOf<Sys>& x, typename Sys::Scalar h,
-                                     const JacobianOf<Sys>& J, WSolver& w, StateOf<Sys>& f) {
+                                     const JacobianOf<Sys>& J, WSolver& w, StateOf<Sys>& f,
+                                     CarryOf<Sys>* carry = nullptr) {
   (void)sys;
   w.factor(J, h);
-  x += h * w.solve(f);
+  if constexpr (is_fixed_point_v<typename Sys::Scalar>) {
+    const StateOf<Sys> k = w.solve(f);
+    fixed_increment<1>(x, h, {1}, {&k}, carry);
+  } else {
+    (void)carry;
+    x += h * w.solve(f);
+  }
 }
 
 template <class Sys, class WSolver>
 void step_ros2_with(const Sys& sys, StateOf<Sys>& x, typename Sys::Scalar h, const JacobianOf<Sys>& J, WSolver& w,
-                    StateOf<Sys>& f) {
+                    StateOf<Sys>& f, CarryOf<Sys>* carry = nullptr) {
   using T = typename Sys::Scalar;
   w.factor(J, T(kRos2Gamma) * h);
   const StateOf<Sys> k1 = w.solve(f);
@@ -60,25 +71,31 @@ void step_ros2_with(const Sys& sys, StateOf<Sys>& x, typename Sys::Scalar h, con
   sys.derivative(x1, f);
   f -= T(2) * k1;
   const StateOf<Sys> k2 = w.solve(f);
-  x += (h * T(1.5)) * k1 + (h * T(0.5)) * k2;
+  if constexpr (is_fixed_point_v<T>) {
+    fixed_increment<2>(x, h, {3, 1}, {&k1, &k2}, carry);
+  } else {
+    (void)carry;
+    x += (h * T(1.5)) * k1 + (h * T(0.5)) * k2;
+  }
 }
 
 // The same with the dense LU.
 template <class Sys>
 void step_linear_implicit_euler_with(const Sys& sys, StateOf<Sys>& x, typename Sys::Scalar h,
-                                     const JacobianOf<Sys>& J) {
+                                     const JacobianOf<Sys>& J, CarryOf<Sys>* carry = nullptr) {
   DenseWSolver<Sys> w;
   StateOf<Sys> f;
   sys.derivative(x, f);
-  step_linear_implicit_euler_with(sys, x, h, J, w, f);
+  step_linear_implicit_euler_with(sys, x, h, J, w, f, carry);
 }
 
 template <class Sys>
-void step_ros2_with(const Sys& sys, StateOf<Sys>& x, typename Sys::Scalar h, const JacobianOf<Sys>& J) {
+void step_ros2_with(const Sys& sys, StateOf<Sys>& x, typename Sys::Scalar h, const JacobianOf<Sys>& J,
+                    CarryOf<Sys>* carry = nullptr) {
   DenseWSolver<Sys> w;
   StateOf<Sys> f;
   sys.derivative(x, f);
-  step_ros2_with(sys, x, h, J, w, f);
+  step_ros2_with(sys, x, h, J, w, f, carry);
 }
 
 template <class Sys>

@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "cvtplant/friction/friction_law.hpp"
+#include "cvtplant/math/detmath.hpp"
 #include "cvtplant/physics/seed.hpp"
 
 namespace cvt {
@@ -49,6 +50,10 @@ struct RomParams {
   bool hold_driven_speed = false;
   // Below this |v_rel| a lump is reported as sticking [m/s] (output only).
   double stick_speed_m_s = 0.01;
+  // Pulley speeds beyond this are outside the model (no centrifugal chain
+  // load, chain speeds of 150 m/s and more): the watchdog faults
+  // (speed-out-of-range, docs/rom.md#watchdog) [rad/s]. 2000 rad/s = 19,100 rpm.
+  double speed_limit_rad_s = 2000.0;
 
   // feature: axial (docs/rom.md#axial)
   double actuator_tau_s = 0.02;       // hydraulic clamping lag
@@ -78,6 +83,15 @@ struct RomParams {
   double radial_travel_m = 0.025;              // |r1 - r1_m| at the ratio end stops (pulley hub / rim)
   double radial_stop_N_m = 1.0e7;              // end-stop contact stiffness; 2x the travel is a fault
 };
+
+// The fastest driver whose link passing an integrator step of `step_s`
+// resolves with 8 steps per link, |w1| h <= 2 alpha / 8 with alpha =
+// asin(L / (2 r1)) (docs/rom.md#polygon) [rad/s]. Up to it ROS2 keeps the
+// pulley speeds within 1e-4 of a resolved run; at 2.6 steps per link (one
+// step per 1 ms frame at 150 rad/s) they were 7 % off without any fault.
+inline double rom_polygon_resolved_speed_rad_s(const RomParams& p, double step_s) {
+  return 2.0 * dm::asin_setup(p.pitch_m / (2.0 * p.r1_m)) / 8.0 / step_s;
+}
 
 // Plant inputs, held constant over a frame (zero-order hold).
 template <class T>

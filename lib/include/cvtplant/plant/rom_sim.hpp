@@ -55,7 +55,10 @@ class RomSimulator {
         // Exact discretisation of the first-order actuator over one frame:
         // F += (F_cmd - F)(1 - exp(-frame / tau_h)) (docs/rom.md#driven-clamping).
         driven_lag_(1.0 - dm::exp(-c.frame_s / p.actuator_tau_s)),
-        frame_(T(c.frame_s / Plant::U::time_s)) {
+        frame_(T(c.frame_s / Plant::U::time_s)),
+        speed_limit_(T(p.speed_limit_rad_s)),
+        resolved_speed_(T(rom_polygon_resolved_speed_rad_s(
+            p, c.frame_s / static_cast<double>(c.substeps < 1 ? 1 : c.substeps)))) {
     x_.setZero();
   }
 
@@ -79,6 +82,7 @@ class RomSimulator {
     plant_.inputs = u0;
     x_ = plant_.initial_state(x0);
     fault_ = RomFault::none;
+    carry_.clear();
     driven_N_ = driven_cmd_N_;
     plant_.set_driven_clamp_N(driven_N_);
     stop_refined_ = 0;
@@ -92,20 +96,20 @@ class RomSimulator {
   // (latched) fault state; a faulted simulator keeps its last good state.
   RomFault step_frame(const RomInputs<T>& u) {
     if (fault_ != RomFault::none) return fault_;
-    if (!rom_finite(u.tau_in_Nm) || !rom_finite(u.tau_load_Nm) || !rom_finite(u.clamp_N)) {
-      fault_ = RomFault::input_non_finite;
-      return fault_;
-    }
+    fault_ = rom_input_fault(u.tau_in_Nm, u.tau_load_Nm, u.clamp_N);
+    if (fault_ != RomFault::none) return fault_;
     plant_.inputs = u;
     if (contact_stale_) refresh_contact();
     const State x_prev = x_;
     const EnergyLedger<Acc> ledger_prev = ledger_;
     const Contact contact_prev = contact_;
+    const Carry carry_prev = carry_;
     const double driven_prev = driven_N_;
     auto roll_back = [&](RomFault why) {
       x_ = x_prev;
       ledger_ = ledger_prev;
       contact_ = contact_prev;
+      carry_ = carry_prev;
       driven_N_ = driven_prev;
       plant_.set_driven_clamp_N(driven_N_);
       fault_ = why;
@@ -125,6 +129,7 @@ class RomSimulator {
         if (refine && f == RomFault::none && near_stop(x_)) {
           x_ = x_prev;
           contact_ = contact_prev;
+          carry_ = carry_prev;
           ledger_ = ledger_prev;
           ledger_.actuator_J += driven_work_;
           f = integrate_stop(n);
@@ -136,6 +141,13 @@ class RomSimulator {
     if (f != RomFault::none) return roll_back(f);
     ledger_.stored_J = plant_.stored_energy(x_);
     ++frames_;
+    // Pulleys within the model's speed range; with chordal action, a driver
+    // slow enough for the step to resolve the link passing (docs/rom.md#polygon).
+    if (abs_of(x_(Plant::Layout::kW1)) > speed_limit_ || abs_of(x_(Plant::Layout::kW2)) > speed_limit_)
+      return roll_back(RomFault::speed_out_of_range);
+    if constexpr (Plant::Layout::kPolygon) {
+      if (abs_of(x_(Plant::Layout::kW1)) > resolved_speed_) return roll_back(RomFault::step_unresolved);
+    }
     if (cfg_.watchdog_energy) {
       const Acc r = ledger_.residual_J();
       if (!(r == r) || r > rel_tol_ * ledger_.scale_J() + abs_tol_) roll_back(RomFault::energy_growth);
@@ -143,6 +155,7 @@ class RomSimulator {
     return fault_;
   }
 
+  static constexpr std::uint32_t features() { return Features; }
   RomOutputs<T> outputs() const { return plant_.outputs(x_); }
   // The state in the plant's units (RomUnits: SI except fixed point, whose
   // displacements are in 2^-10 m); state_si() converts for logs.
@@ -169,6 +182,8 @@ class RomSimulator {
   // Friction of the current state (docs/rom.md#cost); empty with wedging.
   struct NoContact {};
   using Contact = std::conditional_t<kContact, typename Plant::Contact, NoContact>;
+  // Rounding remainders of the fixed-point increments (integrate/increment.hpp).
+  using Carry = IncrementCarry<T, Plant::kStates>;
 
   void refresh_contact() {
     if constexpr (kContact) contact_ = plant_.contact(x_);
@@ -181,11 +196,11 @@ class RomSimulator {
   void advance_substep(const T& h) {
     if constexpr (kContact) {
       if (cfg_.method == Method::ros2 || cfg_.method == Method::linear_implicit_euler) {
-        rom_step_implicit(cfg_.method, plant_, x_, h, contact_, cfg_.w_slope_floor);
+        rom_step_implicit(cfg_.method, plant_, x_, h, contact_, cfg_.w_slope_floor, &carry_);
         return;
       }
     }
-    rom_step(cfg_.method, plant_, x_, h, cfg_.w_slope_floor);
+    rom_step(cfg_.method, plant_, x_, h, cfg_.w_slope_floor, &carry_);
   }
 
   // n substeps of h (plant time units; hacc the same in seconds), each
@@ -203,12 +218,7 @@ class RomSimulator {
       // substep's Jacobian and right-hand side (docs/rom.md#cost).
       refresh_contact();
       const RomPower<Acc> p1 = power_now();
-      const Acc hh = hacc * Acc(0.5);
-      ledger_.input_J += hh * (p0.input_W + p1.input_W);
-      ledger_.actuator_J += hh * (p0.actuator_W + p1.actuator_W);
-      ledger_.load_J += hh * (p0.load_W + p1.load_W);
-      ledger_.friction_loss_J += hh * (p0.friction_loss_W + p1.friction_loss_W);
-      ledger_.damping_loss_J += hh * (p0.damping_loss_W + p1.damping_loss_W);
+      ledger_.add_trapezoid(p0, p1, hacc * Acc(0.5));
       p0 = p1;
     }
     return RomFault::none;
@@ -246,6 +256,7 @@ class RomSimulator {
     driven_work_ = plant_.stored_energy(x_) - before;
     ledger_.actuator_J += driven_work_;
   }
+  static T abs_of(const T& v) { return v < T(0) ? -v : v; }
 
   Plant plant_;
   RomSimConfig cfg_;
@@ -256,12 +267,14 @@ class RomSimulator {
   RomFault fault_ = RomFault::none;
   EnergyLedger<Acc> ledger_{};
   Contact contact_{};
+  Carry carry_{};
   bool contact_stale_ = true;
   long frames_ = 0;
   double driven_cmd_N_, driven_N_, driven_lag_;
   T frame_;  // one frame in the plant's time unit
   Acc driven_work_{};
   long stop_refined_ = 0;
+  T speed_limit_, resolved_speed_;
 };
 
 }  // namespace cvt

@@ -146,17 +146,20 @@ class RomWSolver {
 // simulator evaluates it once per state and shares it with the energy ledger
 // (docs/rom.md#cost). `w_slope_floor` builds W with the friction slope floor
 // of docs/rom.md#slope-floor; without it W = I - gamma h J exactly.
+// `carry` keeps the fixed-point rounding remainders from step to step
+// (integrate/increment.hpp); floating point ignores it.
 template <class T, std::uint32_t F>
 void rom_step_implicit(Method m, const CvtRom<T, F>& sys, typename CvtRom<T, F>::State& x, const T& h,
-                       const typename CvtRom<T, F>::Contact& c, bool w_slope_floor) {
+                       const typename CvtRom<T, F>::Contact& c, bool w_slope_floor,
+                       CarryOf<CvtRom<T, F>>* carry = nullptr) {
   using Plant = CvtRom<T, F>;
   typename Plant::Jacobian J;
   sys.jacobian(x, c, J, w_slope_floor);
   RomWSolver<T, F> w;
   typename Plant::State f;
   sys.derivative(x, c, f);
-  if (m == Method::linear_implicit_euler) step_linear_implicit_euler_with(sys, x, h, J, w, f);
-  else step_ros2_with(sys, x, h, J, w, f);
+  if (m == Method::linear_implicit_euler) step_linear_implicit_euler_with(sys, x, h, J, w, f, carry);
+  else step_ros2_with(sys, x, h, J, w, f, carry);
 }
 
 // One step of `m` on the plant: ROS2 and linearly implicit Euler through
@@ -167,12 +170,12 @@ void rom_step_implicit(Method m, const CvtRom<T, F>& sys, typename CvtRom<T, F>:
 // tools, its Eigen LUs would be most of their compile time.
 template <class T, std::uint32_t F>
 void rom_step(Method m, const CvtRom<T, F>& sys, typename CvtRom<T, F>::State& x, const T& h,
-              bool w_slope_floor = false) {
+              bool w_slope_floor = false, CarryOf<CvtRom<T, F>>* carry = nullptr) {
   switch (m) {
-    case Method::explicit_euler: step_explicit_euler(sys, x, h); return;
+    case Method::explicit_euler: step_explicit_euler(sys, x, h, carry); return;
     case Method::semi_implicit_euler: step_semi_implicit_euler(sys, x, h); return;
-    case Method::heun: step_heun(sys, x, h); return;
-    case Method::rk4: step_rk4(sys, x, h); return;
+    case Method::heun: step_heun(sys, x, h, carry); return;
+    case Method::rk4: step_rk4(sys, x, h, carry); return;
     case Method::linear_implicit_euler:
     case Method::ros2: break;
   }
@@ -182,10 +185,10 @@ void rom_step(Method m, const CvtRom<T, F>& sys, typename CvtRom<T, F>::State& x
     typename CvtRom<T, F>::Jacobian J;
     sys.jacobian(x, J);
     if (w_slope_floor) sys.add_w_slope_floor(x, J);
-    if (m == Method::linear_implicit_euler) step_linear_implicit_euler_with(sys, x, h, J);
-    else step_ros2_with(sys, x, h, J);
+    if (m == Method::linear_implicit_euler) step_linear_implicit_euler_with(sys, x, h, J, carry);
+    else step_ros2_with(sys, x, h, J, carry);
   } else {
-    rom_step_implicit(m, sys, x, h, sys.contact(x), w_slope_floor);
+    rom_step_implicit(m, sys, x, h, sys.contact(x), w_slope_floor, carry);
   }
 }
 

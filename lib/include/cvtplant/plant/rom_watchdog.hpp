@@ -16,6 +16,10 @@ enum class RomFault : std::uint8_t {
   state_saturated,    // a state hit the rail of the fixed-point range
   energy_growth,      // stored energy exceeds what the inputs supplied (docs/rom.md#watchdog)
   radius_out_of_range,  // wedging: the chain left the pulleys' radial travel (docs/rom.md#wedging)
+  input_saturated,    // fixed point: an input at the rail of the Q range (it was clipped)
+  speed_out_of_range,  // a pulley beyond RomParams::speed_limit_rad_s
+  step_unresolved,    // polygon: links pass the driver faster than the step resolves (docs/rom.md#polygon)
+  scene_features,     // run_frames: the simulator's features are not the scene's
 };
 
 inline constexpr const char* rom_fault_name(RomFault f) {
@@ -26,6 +30,10 @@ inline constexpr const char* rom_fault_name(RomFault f) {
     case RomFault::state_saturated: return "state-saturated";
     case RomFault::radius_out_of_range: return "radius-out-of-range";
     case RomFault::energy_growth: return "energy-growth";
+    case RomFault::input_saturated: return "input-saturated";
+    case RomFault::speed_out_of_range: return "speed-out-of-range";
+    case RomFault::step_unresolved: return "step-unresolved";
+    case RomFault::scene_features: return "scene-features";
   }
   return "?";
 }
@@ -39,6 +47,20 @@ inline bool rom_finite(const T& v) {
     (void)v;
     return true;
   }
+}
+
+// The fault of a frame's inputs: non-finite (floating point) or at the rail
+// of the Q range (fixed point: the value did not fit and was clipped when it
+// was converted), else none.
+template <class T>
+inline RomFault rom_input_fault(const T& tau_in, const T& tau_load, const T& clamp) {
+  if constexpr (std::is_floating_point_v<T>) {
+    if (!rom_finite(tau_in) || !rom_finite(tau_load) || !rom_finite(clamp)) return RomFault::input_non_finite;
+  } else {
+    auto rail = [](const T& v) { return v == T::max() || v == T::lowest(); };
+    if (rail(tau_in) || rail(tau_load) || rail(clamp)) return RomFault::input_saturated;
+  }
+  return RomFault::none;
 }
 
 // The first fault a state shows: a non-finite component (floating point) or

@@ -228,6 +228,15 @@ class Fixed {
 
 using q16_16 = Fixed<16>;
 
+// True for Fixed<F>: generic code branches on it where fixed point needs
+// another order of operations than floating point (docs/numerics.md#fixed-point-steps).
+template <class T>
+struct is_fixed_point : std::false_type {};
+template <int F>
+struct is_fixed_point<Fixed<F>> : std::true_type {};
+template <class T>
+inline constexpr bool is_fixed_point_v = is_fixed_point<T>::value;
+
 }  // namespace cvt
 
 // The math of Fixed<F> sits next to the type, found by argument-dependent

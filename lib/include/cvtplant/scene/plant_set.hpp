@@ -16,6 +16,8 @@
 #include <type_traits>
 
 #include "cvtplant/plant/rom_simulator_interface.hpp"
+#include "cvtplant/plant/rom_units.hpp"
+#include "cvtplant/scalar/fixed.hpp"
 #include "cvtplant/scene/scene.hpp"
 #include "cvtplant/scene/scene_runner.hpp"
 
@@ -64,14 +66,43 @@ struct RomPlantSet {
   }
 };
 
-// validate_scene, then whether the set has the scene's plant.
+// Whether a fixed-point plant can take the scene's declared values: every
+// input profile's declared range (profile_bound) and every initial value must
+// fit the Q range in the plant's units (RomUnits), or it would be clipped when
+// converted (docs/rom.md#fixed-point). Floating point takes any finite value.
+template <class T>
+SceneIssue check_scalar_range(const Scene& s) {
+  if constexpr (is_fixed_point_v<T>) {
+    const double lim = T::max().to_double();
+    auto fits = [lim](double v) { return v < lim && v > -lim; };
+    const char* why =
+        "the profile goes beyond the fixed-point range (|value| < 32768 in q16.16): it would be clipped; run it in "
+        "double or float";
+    if (!fits(profile_bound(s.tau_in))) return SceneIssue{false, "tau_in", why};
+    if (!fits(profile_bound(s.tau_load))) return SceneIssue{false, "tau_load", why};
+    if (!fits(profile_bound(s.clamp))) return SceneIssue{false, "clamp", why};
+    using U = RomUnits<T>;
+    const RomInitial& x = s.initial;
+    if (!(fits(x.omega1_rad_s) && fits(x.omega2_rad_s) && fits(x.x1_m / U::length_m) && fits(x.x2_m / U::length_m) &&
+          fits(x.xd1_m_s) && fits(x.xd2_m_s)))
+      return SceneIssue{false, "initial",
+                        "beyond the fixed-point range (speeds |v| < 32768, displacements |x| < 32 m): it would be "
+                        "clipped"};
+  } else {
+    (void)s;
+  }
+  return SceneIssue{};
+}
+
+// validate_scene, then whether the set has the scene's plant and its scalar
+// can take the scene's values.
 template <class Set>
 SceneIssue check_scene_plant(const Scene& s) {
   const SceneIssue issue = validate_scene(s);
   if (!issue.ok) return issue;
   if (const char* why = missing_plant_reason<typename Set::Scalar>(s.features, Set::contains(s.features)))
     return SceneIssue{false, "features", why};
-  return SceneIssue{};
+  return check_scalar_range<typename Set::Scalar>(s);
 }
 
 // A scene's simulator, built from a plant set into storage it owns.

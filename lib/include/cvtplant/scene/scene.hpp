@@ -85,6 +85,25 @@ constexpr Profile sine_profile(double offset, double amplitude, double freq_hz, 
   return p;
 }
 
+// The largest |value| a profile takes at any time: its declared range, which
+// a fixed-point plant must be able to represent (scene/plant_set.hpp).
+inline double profile_bound(const Profile& p) {
+  auto mag = [](double v) { return v < 0 ? -v : v; };
+  auto larger = [](double a, double b) { return a > b ? a : b; };
+  switch (p.kind) {
+    case ProfileKind::constant: return mag(p.value);
+    case ProfileKind::step:
+    case ProfileKind::ramp: return larger(mag(p.value), mag(p.value2));
+    case ProfileKind::sine: return mag(p.value) + mag(p.amplitude);
+    case ProfileKind::table: {
+      double m = 0;
+      for (int i = 0; i < p.n && i < kMaxProfilePoints; ++i) m = larger(m, mag(p.v[i]));
+      return m;
+    }
+  }
+  return 0.0;
+}
+
 enum class ScalarKind : std::uint8_t { f64, f32, q16_16 };
 inline constexpr const char* scalar_kind_name(ScalarKind s) {
   return s == ScalarKind::f64 ? "double" : s == ScalarKind::f32 ? "float" : "fixed";
@@ -128,9 +147,12 @@ struct SceneIssue {
 
 namespace scene_detail {
 constexpr bool fin(double v) { return v == v && v - v == 0.0; }
+constexpr double abs_of(double v) { return v < 0 ? -v : v; }
 constexpr SceneIssue bad(const char* field, const char* message) { return SceneIssue{false, field, message}; }
 
-inline SceneIssue check_profile(const Profile& p, const char* field, bool non_negative) {
+// `frame_s`: the profile is sampled once per frame, so a sine above half the
+// frame rate would alias to another frequency (docs/rom.md#scene-validation).
+inline SceneIssue check_profile(const Profile& p, const char* field, bool non_negative, double frame_s) {
   if (!fin(p.value) || !fin(p.value2) || !fin(p.t0_s) || !fin(p.t1_s) || !fin(p.amplitude) || !fin(p.freq_hz))
     return bad(field, "profile values must be finite");
   if (p.t0_s < 0) return bad(field, "profile times must be >= 0");
@@ -147,6 +169,8 @@ inline SceneIssue check_profile(const Profile& p, const char* field, bool non_ne
       break;
     case ProfileKind::sine:
       if (p.freq_hz < 0) return bad(field, "sine frequency must be >= 0");
+      if (!(p.freq_hz * frame_s <= 0.5))
+        return bad(field, "sine frequency must be at most half the frame rate, 1/(2 frame_s): inputs are sampled once per frame");
       if (non_negative && p.value - (p.amplitude < 0 ? -p.amplitude : p.amplitude) < 0)
         return bad(field, "sine must stay >= 0 (offset >= |amplitude|)");
       break;
@@ -154,6 +178,7 @@ inline SceneIssue check_profile(const Profile& p, const char* field, bool non_ne
       if (p.n < 1 || p.n > kMaxProfilePoints) return bad(field, "table needs 1..16 points");
       for (int i = 0; i < p.n; ++i) {
         if (!fin(p.t_s[i]) || !fin(p.v[i])) return bad(field, "table values must be finite");
+        if (p.t_s[i] < 0) return bad(field, "profile times must be >= 0");
         if (i > 0 && !(p.t_s[i] > p.t_s[i - 1])) return bad(field, "table times must increase strictly");
         if (non_negative && p.v[i] < 0) return bad(field, "must be >= 0");
       }
@@ -165,6 +190,7 @@ inline SceneIssue check_profile(const Profile& p, const char* field, bool non_ne
 
 // Rejects non-physical or out-of-range parameters before a run.
 inline SceneIssue validate_scene(const Scene& s) {
+  using scene_detail::abs_of;
   using scene_detail::bad;
   using scene_detail::fin;
   const RomParams& p = s.params;
@@ -186,6 +212,8 @@ inline SceneIssue validate_scene(const Scene& s) {
   if (!(fin(p.normal_load_factor) && p.normal_load_factor > 0 && p.normal_load_factor <= 4))
     return bad("normal_load_factor", "must be in (0, 4]");
   if (!(fin(p.stick_speed_m_s) && p.stick_speed_m_s > 0)) return bad("stick_speed_m_s", "must be > 0");
+  if (!(fin(p.speed_limit_rad_s) && p.speed_limit_rad_s > 0 && p.speed_limit_rad_s <= 30000))
+    return bad("speed_limit_rad_s", "must be in (0, 30000] rad/s");
   const FrictionParams<double>& f = p.friction;
   if (!(fin(f.mu0) && f.mu0 > 0 && f.mu0 <= 2)) return bad("mu0", "must be in (0, 2]");
   if (!(fin(f.lambda_s_m) && f.lambda_s_m > 0)) return bad("lambda_s_m", "must be > 0");
@@ -239,12 +267,20 @@ inline SceneIssue validate_scene(const Scene& s) {
   if (!(fin(x.omega1_rad_s) && fin(x.omega2_rad_s) && fin(x.x1_m) && fin(x.xd1_m_s) && fin(x.x2_m) &&
         fin(x.xd2_m_s) && fin(x.phase_rad)))
     return bad("initial", "initial values must be finite");
-  if (SceneIssue i = scene_detail::check_profile(s.tau_in, "tau_in", false); !i.ok) return i;
-  if (SceneIssue i = scene_detail::check_profile(s.tau_load, "tau_load", false); !i.ok) return i;
-  if (SceneIssue i = scene_detail::check_profile(s.clamp, "clamp", true); !i.ok) return i;
+  if (!(abs_of(x.omega1_rad_s) <= p.speed_limit_rad_s && abs_of(x.omega2_rad_s) <= p.speed_limit_rad_s))
+    return bad("initial", "pulley speeds must be within speed_limit_rad_s");
   if (!(fin(s.t_end_s) && s.t_end_s > 0 && s.t_end_s <= 1e5)) return bad("t_end_s", "must be in (0, 1e5] s");
   if (!(fin(s.frame_s) && s.frame_s >= 1e-7 && s.frame_s <= s.t_end_s)) return bad("frame_s", "must be in [1e-7 s, t_end_s]");
+  if (SceneIssue i = scene_detail::check_profile(s.tau_in, "tau_in", false, s.frame_s); !i.ok) return i;
+  if (SceneIssue i = scene_detail::check_profile(s.tau_load, "tau_load", false, s.frame_s); !i.ok) return i;
+  if (SceneIssue i = scene_detail::check_profile(s.clamp, "clamp", true, s.frame_s); !i.ok) return i;
   if (s.substeps < 1 || s.substeps > 10000) return bad("substeps", "must be in 1..10000");
+  // docs/rom.md#polygon: 8 steps per link passage at the starting driver speed
+  // (the watchdog faults step-unresolved when the driver gets faster).
+  if ((s.features & rom_feature::polygon) &&
+      abs_of(x.omega1_rad_s) > rom_polygon_resolved_speed_rad_s(p, s.frame_s / s.substeps))
+    return bad("substeps", "polygon: the step does not resolve the link passing at the starting driver speed "
+                           "(8 steps per link needed): raise substeps");
   if ((s.log & ~rom_log::all) != 0u) return bad("log", "unknown log group");
   return SceneIssue{};
 }

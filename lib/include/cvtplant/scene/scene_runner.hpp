@@ -32,10 +32,14 @@ inline long scene_frames(const Scene& s) { return static_cast<long>(s.t_end_s / 
 // RomSimulator<T, F> or the size-erased IRomSimulator<T> of a SceneSimulator
 // (scene/plant_set.hpp). Resets it to the scene's start, then
 // on_frame(long frame, double t_s, const Sim&) -> bool after every frame
-// and at t = 0 (false stops the run). Returns the fault state at the end.
+// and at t = 0 (false stops the run). Returns the fault state at the end:
+// scene-features, without running anything, if the simulator's features are
+// not the scene's (a scene never runs with fewer features than it asks for,
+// nor with others it did not ask for).
 template <class Sim, class OnFrame>
 RomFault run_frames(Sim& sim, const Scene& s, double frame_s, OnFrame&& on_frame) {
   using T = typename Sim::Scalar;
+  if (sim.features() != s.features) return RomFault::scene_features;
   const Sim& view = sim;
   sim.reset(s.initial, scene_inputs_at<T>(s, 0.0));
   if (!on_frame(0L, 0.0, view)) return sim.fault();
