@@ -152,15 +152,27 @@ TEST_CASE("a pulley beyond the model's speed range faults speed-out-of-range") {
   CHECK(d.fault == cvt::RomFault::speed_out_of_range);
   CHECK(d.frames < 10);
   CHECK(std::fabs(d.w1) <= s.params.speed_limit_rad_s);  // the last good state
-  // The plain scene passes 2000 rad/s after 47 s; within the limit it runs.
+  // The plain scene's driver passes 2000 rad/s after some 45 s of slipping;
+  // the fault comes on the frame that takes it past the limit, as found by
+  // the same run with the limit raised, and not before.
   cvt::Scene g = *cvt::find_builtin_scene("gross-slip");
   g.t_end_s = 60.0;
   const End e = run_to_end<float, 0>(g, cvt::sim_config_of(g));
   CHECK(e.fault == cvt::RomFault::speed_out_of_range);
-  CHECK(e.frames * g.frame_s == doctest::Approx(47.8).epsilon(0.01));
-  // A scene may raise the limit; one starting beyond it is refused.
-  g.params.speed_limit_rad_s = 3000.0;
-  CHECK(run_to_end<float, 0>(g, cvt::sim_config_of(g)).fault == cvt::RomFault::none);
+  cvt::Scene wide = g;
+  wide.params.speed_limit_rad_s = 3000.0;
+  long first_past = -1;
+  const cvt::RomFault wide_fault = cvt::run_scene<float, 0>(
+      wide, cvt::sim_config_of(wide), [&](long i, double, const cvt::RomSimulator<float, 0>& sim) {
+        if (first_past < 0 && std::fabs(cvt::to_double(sim.outputs().omega1_rad_s)) > g.params.speed_limit_rad_s)
+          first_past = i;
+        return true;
+      });
+  // A scene may raise the limit; within it the same run goes to its end.
+  CHECK(wide_fault == cvt::RomFault::none);
+  REQUIRE(first_past > 0);
+  CHECK(e.frames == first_past);  // that frame faults,
+  CHECK(std::fabs(e.w1) <= g.params.speed_limit_rad_s);  // rolled back to the last good state
   g.initial.omega1_rad_s = 3500.0;
   CHECK(std::string(cvt::validate_scene(g).field) == "initial");
 }
@@ -203,7 +215,14 @@ TEST_CASE("fixed point: gross slip's driven speed stays with double over a long 
   // 2e-6 of the converged reference. Two causes: the saturated friction slope
   // (the lumps sat 21 LSB off their steady state) and the same rounding of
   // the same increment every step. Measured now: within 5e-3 rad/s.
+  // The seed's even wrap and full normal load (tools/params/uncalibrated.toml):
+  // with them both pulleys accelerate steadily, the regime in which a biased
+  // rounding shows as a drift. The calibrated set's lower normal load leaves
+  // the driven pulley near standstill (0.18 rad/s), where q16.16 and double
+  // part by stick decisions rather than by rounding.
   cvt::Scene s = *cvt::find_builtin_scene("gross-slip");
+  s.params.entry_load_share = 0.5;
+  s.params.normal_load_factor = 1.0;
   s.t_end_s = 40.0;
   for (int substeps : {1, 2}) {
     CAPTURE(substeps);
