@@ -222,10 +222,15 @@ PYEOF
 # ratio plant paced at 1 kHz, the controller free-running with set-point
 # steps 1.5 -> 1.7 -> 1.3, then 0.8, beyond the overdrive stop (reached at
 # the bounded shift speed after about 0.7 s); the controller reports the
-# largest settled error. As above, what needs CPU time (tracking, slip, the
-# stop reached) is judged only when the plant kept time; a starved VM's
-# controller misses its deadlines, the bridge's timeout ramps take over
-# both clampings and shift the ratio (docs/sil.md#timeouts).
+# largest settled error. What needs CPU time (tracking, slip, the stop
+# reached) is judged only when both processes kept time: at most 1 % of the
+# plant's frames overran and the controller stepped on fresh data in at
+# least 95 % of its periods. A late controller's clamping lags the shift,
+# and slip grows with the lateness: a run with 9.8 % of the frames overrun
+# reached 0.13 of slip. A starved VM's controller misses its deadlines, the
+# bridge's timeout ramps take over both clampings and shift the ratio
+# (docs/sil.md#timeouts). The host-independent figure is the virtual-clock
+# test (sil_bridge_tests "onto both end stops").
 start_bridge bridge-rt-ratio --mode realtime --duration-s 60 --scene ratio-control
 "$BUILD/hil/controller/cvtplant-controller" --iface "$IF" --demand-Nm 60 --duration-s 5.5 \
   --ratio-steps 0:1.5,0.5:1.7,2.5:1.3,4:0.8 > "$OUT/controller-rt-ratio.json" || fail "ratio controller exit status"
@@ -239,13 +244,13 @@ rt = s["realtime"]
 if rt is None:
     print("sil_vcan: real-time ratio control: the bridge never ran in real time")
     sys.exit(1)
-on_time = rt["overruns"] <= 0.1 * rt["periods"]
-print("sil_vcan: real-time ratio control: %d periods (%d overruns), plant fault %s, %d settled samples, "
-      "max |ratio - set-point| %.4f, max |slip| %.4f, %d stop-refined frames, %d shift timeouts; %s"
-      % (rt["periods"], rt["overruns"], s["plant_fault"], r["settled_samples"],
+on_time = rt["overruns"] <= 0.01 * rt["periods"] and c["fresh_fraction"] >= 0.95
+print("sil_vcan: real-time ratio control: %d periods (%d overruns), controller on fresh data %.3f, plant fault %s, "
+      "%d settled samples, max |ratio - set-point| %.4f, max |slip| %.4f, %d stop-refined frames, %d shift timeouts; %s"
+      % (rt["periods"], rt["overruns"], c["fresh_fraction"], s["plant_fault"], r["settled_samples"],
          r["max_abs_error_settled"], r["max_abs_slip"], s["stop_refined_frames"], s["shift_timeouts"],
-         "the plant kept time: tracking, slip and the stop checked" if on_time
-         else "the VM did not keep time, only the functional checks apply"))
+         "both kept time: tracking, slip and the stop checked" if on_time
+         else "the VM did not keep time (more than 1 % overruns or under 0.95 fresh), only the functional checks apply"))
 ok = s["plant_fault"] == "none" and c["accepted"] >= 1 and c["rejected"] == 0 and r["steps"] == 4
 if on_time:
     ok = (ok and r["settled_samples"] >= 20 and r["max_abs_error_settled"] <= 0.05 and r["max_abs_slip"] <= 0.10
