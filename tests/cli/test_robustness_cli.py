@@ -264,6 +264,16 @@ class SceneFiles(Case):
             p = write(d, "empty.toml", "# nothing\n")
             self.usage_error(["run", "--scene", p], r"has no keys: not a scene file")
 
+    def test_non_ascii_scene_file(self):
+        # The TOML parser has undefined behaviour on some non-ASCII characters
+        # where it looks for whitespace (the scene-file fuzzer found U+00A0..
+        # U+0499 there): any non-ASCII byte is refused with its line.
+        with tempfile.TemporaryDirectory() as d:
+            p = write(d, "u.toml", 'base = "seed-case1"\nt_end_s = 0.1\u00e9 \n')
+            self.usage_error(["run", "--scene", p], r"u\.toml:2: not ASCII")
+            p = write(d, "c.toml", '# \u00b5 in a comment\nbase = "seed-case1"\n')
+            self.usage_error(["run", "--scene", p], r"c\.toml:1: not ASCII")
+
     def test_csv_over_the_scene_file(self):
         with tempfile.TemporaryDirectory() as d:
             text = 'base = "seed-case1"\nt_end_s = 0.1\n'

@@ -321,8 +321,19 @@ class Reader {
 namespace {
 
 // toml++ reports syntax errors by throwing (tools build with exceptions on);
-// a refusal names the file and line. `what`: the option that named the file.
+// a refusal names the file and line.
 toml::table parse_toml_text(const std::string& text, const std::string& path) {
+  // Scene and parameter files are ASCII: Debian 12's toml++ reaches an
+  // unreachable branch (undefined behaviour) when it tests some non-ASCII
+  // characters for whitespace (U+00A1..U+0499 among them), found by the
+  // scene-file fuzzer. A file with such a byte is refused, naming its line.
+  long line = 1;
+  for (const char ch : text) {
+    if (ch == '\n') ++line;
+    if (static_cast<unsigned char>(ch) >= 0x80)
+      throw UsageError{path + ":" + std::to_string(line) +
+                       ": not ASCII: scene and parameter files are plain ASCII text"};
+  }
   try {
     return toml::parse(text, path);
   } catch (const toml::parse_error& e) {
