@@ -262,10 +262,13 @@ std::vector<std::string> sweep_figures(const std::string& sweep_csv, const std::
       const std::size_t eq = tok.find('=');
       if (eq == std::string::npos) continue;
       const std::string k = tok.substr(0, eq), v = tok.substr(eq + 1);
-      made[k] = v;
+      // Numbers are written with 17 digits; the title shows them short.
+      char* end = nullptr;
+      const double num = std::strtod(v.c_str(), &end);
+      made[k] = k != "scene" && k != "a1" && k != "a2" && k != "x0" && end != v.c_str() && *end == '\0' ? fmt_g(num) : v;
       if (k != "scene" && k != "a1" && k != "a2" && k != "x0" && k != "dt" && k != "t_transient" && k != "t_end" &&
           k != "state" && k != "total")
-        fixed += ", " + k + " = " + v;
+        fixed += ", " + k + " = " + made[k];
     }
   }
   const bool is_map = has_model(made["scene"]) && find_model(made["scene"]).is_map;
@@ -316,9 +319,9 @@ std::vector<std::string> sweep_figures(const std::string& sweep_csv, const std::
   if (two_d)
     s << "set title \"largest Lyapunov exponent lambda_1 " << lambda_unit << " over " << cols[1] << " and " << cols[2]
       << "\\n" << subtitle << "\"\nset xlabel '" << cols[1] << "'\nset ylabel '" << cols[2]
-      << "'\nset view map\nset palette defined (-1 'blue', 0 'white', 1 'red')\nset cbrange [" << -lam_abs << ":"
-      << lam_abs << "]\nset cblabel 'lambda_1 " << lambda_unit << " (white = 0)'\nsplot '" << D
-      << "exponents.dat' u 1:2:3 w pm3d notitle\n";
+      << "'\nset palette defined (-1 'blue', 0 'white', 1 'red')\nset cbrange [" << -lam_abs << ":"
+      << lam_abs << "]\nset cblabel 'lambda_1 " << lambda_unit << " (white = 0)'\nplot '" << D
+      << "exponents.dat' u 1:2:3 w image notitle\n";  // one cell per grid point, its own colour
   else
     s << "set title \"largest Lyapunov exponent against " << cols[1] << "\\n" << subtitle << "\"\nset xlabel '"
       << cols[1] << "'\nset ylabel 'lambda_1 " << lambda_unit << "'\nplot '" << D
