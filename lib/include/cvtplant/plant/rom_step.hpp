@@ -169,12 +169,14 @@ class RomWSolver {
 
   static T abs_of(const T& v) { return v < T(0) ? -v : v; }
 
-  T kin_[5]{};
-  T wcp_[kM][5]{};
-  T wca_[kM]{};
-  T w_hh_{}, w_d_dd_{}, w_dh_{}, w_dd_{}, w_dd_piv_{};
-  T lu_[kM][kM]{};
-  int perm_[kM]{};
+  // Written by factor() before solve() reads them; not initialised, since a
+  // solver is made for every step and zeroing it cost 60 instructions there.
+  T kin_[5];
+  T wcp_[kM][5];
+  T wca_[kM];
+  T w_hh_, w_d_dd_, w_dh_, w_dd_, w_dd_piv_;
+  T lu_[kM][kM];
+  int perm_[kM];
 };
 
 // One ROS2 or linearly implicit Euler step of a plant without wedging, from
