@@ -83,6 +83,7 @@ if spread:
     print("| scene, 20,000 consecutive frames (double, host wall time) | median ns | p99.9 ns | max ns | p99.9 / median | max / median |")
     print("|---|---:|---:|---:|---:|---:|")
     for label, b in spread.items():
+        label = label.replace("/iterations:1", "")
         print("| %s | %.0f | %.0f | %.0f | %.2f | %.2f |" % (label, b["median_ns"], b["p999_ns"], b["max_ns"],
                                                           b["p999_over_median"], b["max_over_median"]))
 EOF

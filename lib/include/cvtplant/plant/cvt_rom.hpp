@@ -408,7 +408,7 @@ class CvtRom {
     if constexpr (L::kPolygon) J(L::kPsi, L::kW1) = per_tau(T(1));
   }
 
-  // docs/rom.md#slope-floor for the dense W of the wedging plants: adds to J
+  // docs/rom.md#slope-floor for the W of the wedging plants: adds to J
   // the part of the floor that acts through the tangential slip speed,
   // dF_i/dv_t,i raised by (floor - phi') F_ax / cos(beta_i) on the rows of w1
   // and xd_i and the columns w1, w2, xd_i. An approximation of the same floor

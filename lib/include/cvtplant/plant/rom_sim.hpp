@@ -29,7 +29,7 @@ struct RomSimConfig {
   double energy_rel_tol = 0.05;  // residual > rel * scale + abs  ->  energy_growth
   double energy_abs_tol_J = 1.0;
   // W of the implicit methods with the friction slope floor
-  // (docs/rom.md#slope-floor; the wedging plants add it to their dense W);
+  // (docs/rom.md#slope-floor; the wedging plants add it to their full J);
   // no effect on the explicit methods.
   bool w_slope_floor = true;
   // Wedging: a frame that starts or ends on a radial end stop, or close
