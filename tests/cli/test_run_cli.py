@@ -141,6 +141,31 @@ class Run(unittest.TestCase):
             self.assertEqual(r.returncode, 0, name + r.stderr)
 
 
+    def test_without_energy_ledger(self):
+        # The scene's choice (docs/rom.md#watchdog): same trajectory, no
+        # energy object and no energy columns; the default log drops them.
+        with tempfile.TemporaryDirectory() as d:
+            p = write(d, "s.toml", 'base = "seed-case1"\nt_end_s = 1.0\nenergy_ledger = false\n')
+            out_off, out_on = os.path.join(d, "off.csv"), os.path.join(d, "on.csv")
+            r = run("run", "--scene", p, "--csv", out_off, "--json")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            j = json.loads(r.stdout)
+            self.assertFalse(j["energy_ledger"])
+            self.assertNotIn("energy", j)
+            self.assertEqual(j["fault"], "none")
+            r = run("run", "--scene", "seed-case1", "--t-end", "1", "--csv", out_on, "--json")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.assertTrue(json.loads(r.stdout)["energy_ledger"])
+            with open(out_off) as f:
+                off = list(csv.reader(f))
+            with open(out_on) as f:
+                on = list(csv.reader(f))
+        self.assertNotIn("E_residual", off[0])
+        self.assertIn("E_residual", on[0])
+        self.assertEqual(len(off), len(on))
+        for a, b in zip(off[1:], on[1:]):
+            self.assertEqual(a[:5], b[:5])
+
     def test_wedging_scene_shifts_the_ratio(self):
         with tempfile.TemporaryDirectory() as d:
             out = os.path.join(d, "shift.csv")
@@ -202,6 +227,13 @@ class BadInput(unittest.TestCase):
             self.assert_usage(run("run", "--scene", p), p + ":1:", "features", "warp_drive")
             p = write(d, "k.toml", 'base = "tip-in"\n[inputs]\ntau_in = { kind = "square", value = 1 }\n')
             self.assert_usage(run("run", "--scene", p), p + ":3:", "kind")
+
+    def test_energy_ledger_key(self):
+        with tempfile.TemporaryDirectory() as d:
+            p = write(d, "b.toml", 'base = "seed-case1"\nenergy_ledger = "off"\n')
+            self.assert_usage(run("run", "--scene", p), p + ":2:", "energy_ledger", "true or false")
+            p = write(d, "e.toml", 'base = "seed-case1"\nenergy_ledger = false\nlog = ["torques", "energy"]\n')
+            self.assert_usage(run("run", "--scene", p), "log", "energy_ledger")
 
     def test_wedging_needs_axial_and_floating_point(self):
         shift = os.path.join(SCENES, "ratio-shift.toml")

@@ -240,7 +240,8 @@ cvtcli::Action register_run(CLI::App& app) {
       j["frames"] = r.frames;
       j["t_end_s"] = r.t_end_s;
       j["fault"] = cvt::rom_fault_name(r.fault);
-      j["energy"] = {{"stored_initial_J", r.stored0},  {"stored_final_J", r.stored}, {"input_J", r.input},
+      j["energy_ledger"] = s.energy_ledger;
+      if (s.energy_ledger) j["energy"] = {{"stored_initial_J", r.stored0},  {"stored_final_J", r.stored}, {"input_J", r.input},
                      {"actuator_J", r.actuator},       {"load_J", r.load},           {"friction_loss_J", r.friction},
                      {"damping_loss_J", r.damping},    {"residual_J", r.residual},   {"flow_scale_J", r.scale},
                      {"residual_relative", rel}};
@@ -265,7 +266,7 @@ cvtcli::Action register_run(CLI::App& app) {
       std::fprintf(info, "  %ld frames to t = %g s, fault: %s\n", r.frames, r.t_end_s, cvt::rom_fault_name(r.fault));
       std::fprintf(info, "  final: omega1 = %.4f rad/s, omega2 = %.4f rad/s, F_ax = %.1f N, slip = %.5f\n", r.final_w1,
                   r.final_w2, r.final_fax, r.final_slip);
-      std::fprintf(info, "  energy: in %.4g J, actuator %.4g J, load %.4g J, friction %.4g J, damping %.4g J, "
+      if (s.energy_ledger) std::fprintf(info, "  energy: in %.4g J, actuator %.4g J, load %.4g J, friction %.4g J, damping %.4g J, "
                   "stored %.4g -> %.4g J, residual %.3g J (%.2e of the flows)\n",
                   r.input, r.actuator, r.load, r.friction, r.damping, r.stored0, r.stored, r.residual, rel);
       if (csv != nullptr)
