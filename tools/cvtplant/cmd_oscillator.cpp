@@ -222,8 +222,8 @@ cvtcli::Action register_oscillator(CLI::App& app) {
       j["dt_actual_s"] = s.dt_actual_s;
       j["t_end_s"] = o.t_end_s;
       j["steps"] = s.steps;
-      j["final_state"] = {{"x1", s.final_state[0]}, {"v1", s.final_state[1]}, {"x2", s.final_state[2]},
-                          {"v2", s.final_state[3]}};
+      j["final_state"] = {{"x1_m", s.final_state[0]}, {"v1_m_s", s.final_state[1]}, {"x2_m", s.final_state[2]},
+                          {"v2_m_s", s.final_state[3]}};
       j["finite"] = s.finite;
       j["settled"] = s.settled;
       j["behaviour"] = behaviour;

@@ -235,7 +235,7 @@ cvtcli::Action register_run(CLI::App& app) {
       j["features"] = cvtcli::feature_names(s.features);
       j["scalar"] = cvt::scalar_kind_name(s.scalar);
       j["integrator"] = cvt::method_name(s.method);
-      j["dt_s"] = s.frame_s;
+      j["frame_s"] = s.frame_s;
       j["substeps"] = s.substeps;
       j["frames"] = r.frames;
       j["t_end_s"] = r.t_end_s;
@@ -244,7 +244,7 @@ cvtcli::Action register_run(CLI::App& app) {
       if (s.energy_ledger) j["energy"] = {{"stored_initial_J", r.stored0},  {"stored_final_J", r.stored}, {"input_J", r.input},
                      {"actuator_J", r.actuator},       {"load_J", r.load},           {"friction_loss_J", r.friction},
                      {"damping_loss_J", r.damping},    {"residual_J", r.residual},   {"flow_scale_J", r.scale},
-                     {"residual_relative", rel}};
+                     {"residual_rel", rel}};
       j["mean"] = {{"omega1_rad_s", r.mean_w1}, {"omega2_rad_s", r.mean_w2}, {"F_ax_N", r.mean_fax}};
       j["max_abs_slip"] = r.max_abs_slip;
       j["final"] = {{"omega1_rad_s", r.final_w1},
