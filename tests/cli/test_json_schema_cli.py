@@ -172,6 +172,11 @@ class Schema(unittest.TestCase):
         self.assertEqual(j["t_end_s"], 0.02)
         self.assertIn("sample_s", j)
 
+    def test_mbd_figures(self):
+        out = os.path.join(self.tmp.name, "mf")
+        j = self.check(run_json("mbd", "figures", "--out-dir", out, "--t-end", "0.02"))
+        self.assertIn("wall_s", j["runs"][0])
+
     def test_validate_and_calibrate(self):
         out = os.path.join(self.tmp.name, "v")
         j = self.check(run_json("validate", "--scene", "seed-case1", "--t-end", "0.2", "--no-figures", "--out-dir", out))
@@ -181,6 +186,9 @@ class Schema(unittest.TestCase):
     def test_analyze_series(self):
         for sub in ("ami", "fnn", "cao", "lle", "rqa", "test01", "classify"):
             self.check(run_json("analyze", sub, "--csv", self.csv, "--column", "s"), exempt=SERIES_MEASURES)
+        png = os.path.join(self.tmp.name, "rp.png")
+        self.check(run_json("analyze", "recurrence", "--csv", self.csv, "--column", "s", "--png", png),
+                   exempt=SERIES_MEASURES)
 
 
 if __name__ == "__main__":
