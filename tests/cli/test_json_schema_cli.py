@@ -51,7 +51,7 @@ ROW_VALUES = {"value", "start", "sigma", "plant_ss", "reference_ss"}
 # One name for one quantity: the names a command must not use, and the shared one.
 NOT_SHARED = {"dt": "dt_s / frame_s", "t_end": "t_end_s", "t": "t_s", "t_transient": "t_transient_s",
               "t_renorm": "t_renorm_s", "t_warmup": "t_warmup_s", "sample_dt_s": "sample_s", "method": "integrator",
-              "wall_time_s": "wall_s"}
+              "wall_time_s": "wall_s", "run_time_s": "wall_s"}
 
 
 def has_unit(key):
@@ -141,7 +141,7 @@ class Schema(unittest.TestCase):
         self.assertEqual(j["subcommand"], "run")
         self.assertEqual(j["frame_s"], 1e-3)
         self.assertEqual(j["t_end_s"], 0.05)
-        for k in ("scene", "scalar", "integrator", "substeps"):
+        for k in ("scene", "scalar", "integrator", "substeps", "wall_s"):
             self.assertIn(k, j)
 
     def test_rom_accuracy(self):
@@ -166,11 +166,13 @@ class Schema(unittest.TestCase):
         j = self.check(run_json("oscillator", "--t-end", "0.1"))
         self.assertEqual(j["t_end_s"], 0.1)
         self.assertIn("x1_m", j["final_state"])
+        self.assertIn("wall_s", j)
 
     def test_mbd(self):
         j = self.check(run_json("mbd", "--case", "1", "--t-end", "0.02"))
         self.assertEqual(j["t_end_s"], 0.02)
         self.assertIn("sample_s", j)
+        self.assertIn("wall_s", j)
 
     def test_mbd_figures(self):
         out = os.path.join(self.tmp.name, "mf")

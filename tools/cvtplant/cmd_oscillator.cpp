@@ -231,7 +231,7 @@ cvtcli::Action register_oscillator(CLI::App& app) {
       j["last_window"] = {{"window_s", o.settle_window_s}, {"x1_peak_to_peak_m", s.x1_max - s.x1_min},
                           {"max_abs_velocity_m_s", s.v_abs_max}};
       j["period_s"] = s.period_s > 0 ? nlohmann::json(s.period_s) : nlohmann::json(nullptr);
-      j["run_time_s"] = s.wall_s;
+      j["wall_s"] = s.wall_s;
       j["ns_per_step"] = s.steps > 0 ? 1e9 * s.wall_s / static_cast<double>(s.steps) : 0.0;
       cvtcli::print_json(j);
     } else {

@@ -252,8 +252,8 @@ cvtcli::Action register_run(CLI::App& app) {
                     {"F_ax_N", r.final_fax},
                     {"slip", r.final_slip},
                     {"torque_transmitted_Nm", r.final_torque}};
-      j["run_time_s"] = r.wall_s;
-      j["output_time_s"] = r.output_s;
+      j["wall_s"] = r.wall_s;
+      j["output_wall_s"] = r.output_s;
       j["ns_per_frame"] = ns_frame;
       j["plant_ns_per_frame"] = plant_ns;
       j["output_ns_per_frame"] = output_ns;
