@@ -132,6 +132,7 @@ class Schema(unittest.TestCase):
     def test_scenes(self):
         for s in run_json("scenes"):
             self.check(s)
+            self.assertIn("scene", s)
             self.assertIn("frame_s", s)
             self.assertIn("t_end_s", s)
             self.assertIn("integrator", s)

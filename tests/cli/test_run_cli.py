@@ -42,7 +42,7 @@ class Scenes(unittest.TestCase):
         r = run("scenes", "--json")
         self.assertEqual(r.returncode, 0, r.stderr)
         j = json.loads(r.stdout)
-        self.assertEqual([s["name"] for s in j], BUILTIN)
+        self.assertEqual([s["scene"] for s in j], BUILTIN)
         self.assertTrue(all(s["integrator"] == "ros2" and s["frame_s"] == 1e-3 for s in j))
 
 
