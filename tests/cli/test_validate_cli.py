@@ -48,6 +48,15 @@ class Validate(unittest.TestCase):
             self.assertIsNotNone(e["rel_rms"], e)
             self.assertGreaterEqual(e["rel_rms"], 0.0)
         self.assertTrue(os.path.getsize(s["png"]) > 10000)
+
+    def test_run_too_short_for_a_ratio_still_draws(self):
+        # 50 ms: the driven pulley stays below 1 rad/s, so the ratio panel has
+        # no defined value; the overlay is still drawn on the run's time axis.
+        with tempfile.TemporaryDirectory() as d:
+            r = run("validate", "--scene", "seed-case1", "--t-end", "0.05", "--out-dir", d, "--json")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            (s,) = json.loads(r.stdout)["scenes"]
+            self.assertTrue(os.path.getsize(s["png"]) > 10000)
         self.assertEqual(s["csv"], os.path.join(self.out, "seed-case1.csv"))
         self.assertEqual(len(self.first_csv_lines), 1 + 201)  # t = 0, 1 ms, ..., 0.2 s
         # The clamped reference holds its driver clamping at the 3.3 kN the

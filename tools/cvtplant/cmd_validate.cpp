@@ -75,7 +75,10 @@ void write_overlay_png(const std::string& dir, const std::string& name, const st
     << "set datafile separator ','\nset datafile missing 'nan'\nset grid\nset key outside right\n"
     << "set multiplot layout 5,1 title 'Scene " << name
     << ": real-time plant (lines) against the multibody reference (thin, grey and red)'\n"
-    << "set lmargin 12\nset rmargin 26\nunset xlabel\n";
+    << "set lmargin 12\nset rmargin 26\nunset xlabel\n"
+    // A fixed time axis: a short run whose ratio is undefined throughout (the
+    // driven pulley below 1 rad/s) still draws an empty panel, not an error.
+    << "set xrange [0:" << t_end_s << "]\n";
   // A dotted line where the comparison ends (a sheave at its end stop, or
   // the reference stopped).
   if (compared_s < t_end_s - 1e-9)
