@@ -82,13 +82,14 @@ CVT_TARGET_TEST(rom_frame_instruction_counts_float) {
   // Wedging adds two states and a dense 11x11 LU (docs/rom.md#wedging).
   CHECK_GT(counts.seed_case1_wedging, counts.seed_case1);
   // The variable-ratio plant of ratio control over CAN (docs/rom.md#cost):
-  // 32725 on the M4F image, 32404 on the M7 image (Debian's
-  // arm-none-eabi-gcc 12.2, -O2). The count is exact for one binary, but
+  // 33986 on the M4F image (Debian's arm-none-eabi-gcc 12.2, -O2; 32725
+  // before the wrap-tension coupling, docs/rom.md#wrap-tension, whose
+  // strand stretch the 11-wide dual-number Jacobian carries in every column). The count is exact for one binary, but
   // the code around the measured call (this file's lambdas, inlining) moves
   // it by tens of instructions and the CPU tuning by 1 %, so the band is
   // 2 %: a change of the plant's work shows, a rebuild of this file does not.
-  CHECK_GT(counts.ratio_control, 31750u);
-  CHECK_LT(counts.ratio_control, 33400u);
+  CHECK_GT(counts.ratio_control, 33300u);
+  CHECK_LT(counts.ratio_control, 34700u);
   // A frame on the end stop is taken in stop_substeps = 2 steps
   // (docs/rom.md#end-stop): twice a frame off it, within the frame overhead.
   CHECK_GT(counts.on_stop, 19u * counts.ratio_control / 10u);
