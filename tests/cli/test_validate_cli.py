@@ -100,15 +100,17 @@ def values(text, pattern):
 
 
 class CalibratedSet(unittest.TestCase):
-    def test_the_checked_in_header_holds_the_parameter_files_values(self):
-        # The built-in scenes read the header; docs and users read the file.
+    def test_the_checked_in_headers_hold_the_parameter_files_values(self):
+        # The built-in scenes read the headers; docs and users read the files.
         root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
-        with open(os.path.join(root, "tools", "params", "calibrated.toml")) as f:
-            toml_values = values(f.read(), TOML)
-        with open(os.path.join(root, "lib", "include", "cvtplant", "scene", "calibrated_params.hpp")) as f:
-            hpp_values = values(f.read(), HPP)
-        self.assertTrue(toml_values)
-        self.assertEqual(hpp_values, toml_values)
+        for toml_name, hpp_name in (("calibrated.toml", "calibrated_params.hpp"),
+                                    ("wrap-tension.toml", "calibrated_wrap_tension.hpp")):
+            with open(os.path.join(root, "tools", "params", toml_name)) as f:
+                toml_values = values(f.read(), TOML)
+            with open(os.path.join(root, "lib", "include", "cvtplant", "scene", hpp_name)) as f:
+                hpp_values = values(f.read(), HPP)
+            self.assertTrue(toml_values, toml_name)
+            self.assertEqual(hpp_values, toml_values, toml_name)
 
     def test_params_moves_the_plant_only(self):
         with tempfile.TemporaryDirectory() as d:
@@ -147,6 +149,8 @@ class BadInput(unittest.TestCase):
             self.check(["calibrate", "--fit", "k1_N_m,k1_N_m", "--out-dir", d], "twice")
             self.check(["calibrate", "--scene", "tip-in", "--out-dir", d], "road load")
             self.check(["calibrate", "--every", "0", "--out-dir", d], "--every")
+            self.check(["calibrate", "--function", "1apply", "--out-dir", d], "--function")
+            self.check(["calibrate", "--function", "apply;", "--out-dir", d], "--function")
             bad = os.path.join(d, "bad.toml")
             with open(bad, "w") as f:
                 f.write("[params]\nk1_N_m = -5.0\n")
@@ -158,6 +162,12 @@ class BadInput(unittest.TestCase):
             with open(bad, "w") as f:
                 f.write("[params]\nentry_load_share = 1.0\n")
             self.check(["validate", "--scene", "seed-case1", "--params", bad, "--out-dir", d], "entry_load_share")
+            wedging = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools", "scenes",
+                                   "seed-case1-wedging.toml")
+            for v in ("1.0", "-0.1", "nan"):
+                with open(bad, "w") as f:
+                    f.write("[params]\nwrap_tension_share = %s\n" % v)
+                self.check(["validate", "--scene", wedging, "--params", bad, "--out-dir", d], "wrap_tension_share")
 
 
 class Calibrate(unittest.TestCase):
@@ -185,6 +195,30 @@ class Calibrate(unittest.TestCase):
             self.assertEqual(r2.returncode, 0, r2.stderr)
             j2 = json.loads(r2.stdout)
             self.assertAlmostEqual(j2["cost_start"], j["cost_end"], delta=1e-9 + 1e-6 * j["cost_end"])
+
+    def test_a_share_fit_from_zero_and_a_named_header_function(self):
+        # The wrap-tension share on the variable-ratio seed case: the built-in
+        # value is replaced by 0 (the term off); the fit starts from 0.5 and
+        # ends in (0, 1); the header's function carries the given name.
+        scene = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools", "scenes",
+                             "seed-case1-wedging.toml")
+        with tempfile.TemporaryDirectory() as d:
+            off = os.path.join(d, "off.toml")
+            with open(off, "w") as f:
+                f.write("[params]\nwrap_tension_share = 0.0\n")
+            hpp = os.path.join(d, "w.hpp")
+            r = run("calibrate", "--scene", scene, "--t-end", "0.5", "--fit", "wrap_tension_share", "--every", "5",
+                    "--max-evals", "30", "--out-dir", d, "--start", off, "--out", os.path.join(d, "w.toml"),
+                    "--header", hpp, "--function", "apply_wrap", "--json")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            (p,) = json.loads(r.stdout)["parameters"]
+            self.assertEqual(p["start"], 0.5)
+            self.assertGreater(p["value"], 0.0)
+            self.assertLess(p["value"], 1.0)
+            with open(hpp) as f:
+                text = f.read()
+            self.assertIn("constexpr void apply_wrap(RomParams& p) {", text)
+            self.assertIn("--function apply_wrap", text)
 
 
 if __name__ == "__main__":

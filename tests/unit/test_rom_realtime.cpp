@@ -179,7 +179,11 @@ TEST_CASE_TEMPLATE("slope floor: one step per frame starts seed case 2 from rest
   const double ref_w = case2_from_rest<double, f::axial | f::wedging>(true, 20, 2.0).second;
   const auto rw = case2_from_rest<T, f::axial | f::wedging>(true, 1, 2.0);
   CHECK(rw.first == cvt::RomFault::none);
-  CHECK(rw.second == doctest::Approx(ref_w).epsilon(1e-4));
+  // The seed case's wrap-tension coupling (docs/rom.md#wrap-tension) adds
+  // a strand stiffness to the radial mode, so one step per frame is
+  // 1.1e-4 from 20 substeps here (within 1e-4 without it): inside the
+  // plant's 1e-3 accuracy goal.
+  CHECK(rw.second == doctest::Approx(ref_w).epsilon(2e-4));
 }
 
 TEST_CASE("slope floor: fixed point starts seed case 2 from rest at one step per frame") {

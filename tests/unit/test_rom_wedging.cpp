@@ -235,6 +235,13 @@ TEST_CASE("wedging: analytic Jacobian equals the dual-number Jacobian for every 
     stick.xd1_m_s = 1e-5;
     stick.xd2_m_s = -1e-5;
     check_wedge_jacobian_against_duals<kWedgeRoad>(p, stick, 0.0, 0.0, true);
+    // The wrap-tension coupling (docs/rom.md#wrap-tension) at a share well
+    // above the calibrated one: its strand-stretch and radial-pull terms are
+    // zero at the default share of 0, so only here do they reach the check.
+    cvt::RomParams coupled = p;
+    coupled.wrap_tension_share = 0.4;
+    check_wedge_jacobian_against_duals<kWedgeRoad>(coupled, x0, -0.02, 0.0);
+    check_wedge_jacobian_against_duals<f::all>(coupled, x0, 0.01, 0.0);
     // Held pulleys: zero rows, like the right-hand side's.
     p.hold_driver_speed = true;
     p.hold_driven_speed = true;
@@ -246,6 +253,7 @@ TEST_CASE("wedging: analytic Jacobian matches central differences") {
   for (const auto& fr : {cvt::friction_presets::table2_case1<double>(), cvt::friction_presets::table2_case2<double>()}) {
     cvt::RomParams p;
     p.friction = fr;
+    p.wrap_tension_share = 0.4;  // the coupling's terms reach the check
     Rom rom(p);
     rom.inputs.tau_in_Nm = 80.0;
     rom.inputs.tau_load_Nm = 40.0;

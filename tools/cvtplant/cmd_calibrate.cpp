@@ -46,6 +46,7 @@ constexpr Fittable kFittable[] = {
     {"r2_m", &cvt::RomParams::r2_m},
     {"normal_load_factor", &cvt::RomParams::normal_load_factor},
     {"entry_load_share", &cvt::RomParams::entry_load_share, true},
+    {"wrap_tension_share", &cvt::RomParams::wrap_tension_share, true},
 };
 
 double fitted_value(const Fittable& f, double start, double theta) {
@@ -62,6 +63,7 @@ struct Options {
   std::string fit = "k1_N_m,c1_Ns_m,k2_N_m,c2_Ns_m,lump_mass_kg,r1_m,r2_m";
   std::string out;
   std::string header;  // the same values as a C++ header for the built-in scenes
+  std::string function = "apply";  // the header's function, cvt::calibrated::NAME(RomParams&)
   std::string out_dir = "validation";
   std::string start;  // parameter file to start from
   double t_end_s = 0;
@@ -171,6 +173,7 @@ std::string command_line(const Options& o) {
   if (o.t_end_s > 0) s << " --t-end " << o.t_end_s;
   s << " --rtol " << o.rtol << " --every " << o.every << " --max-evals " << o.max_evals << " --out " << o.out;
   if (!o.header.empty()) s << " --header " << o.header;
+  if (o.function != "apply") s << " --function " << o.function;
   return s.str();
 }
 
@@ -182,12 +185,15 @@ Action register_calibrate(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--fit", opt->fit,
                   "Parameters to fit, comma-separated: k1_N_m, c1_Ns_m, k2_N_m, c2_Ns_m, lump_mass_kg, r1_m, r2_m, "
-                  "normal_load_factor, entry_load_share")
+                  "normal_load_factor, entry_load_share, wrap_tension_share")
       ->capture_default_str();
   sub->add_option("--out", opt->out, "Write the fitted parameters as a parameter file (TOML [params])");
   sub->add_option("--header", opt->header,
                   "Also write them as a C++ header with cvt::calibrated::apply(RomParams&) (the built-in scenes')");
   sub->add_option("--out-dir", opt->out_dir, "Directory of the reference cache (shared with validate)")
+      ->capture_default_str();
+  sub->add_option("--function", opt->function,
+                  "The header's function name, cvt::calibrated::NAME(RomParams&) (one header per fitted set)")
       ->capture_default_str();
   sub->add_option("--start", opt->start, "Start from a parameter file's values (default: the scenes' own)");
   sub->add_option("--t-end", opt->t_end_s, "Shorten every run to this simulated time [s]");
@@ -206,6 +212,12 @@ Action register_calibrate(CLI::App& app) {
     if (!(o.every >= 1 && o.every <= 1000)) throw UsageError{"--every: outside [1, 1000]"};
     if (!(o.max_evals >= 1 && o.max_evals <= 100000)) throw UsageError{"--max-evals: outside [1, 100000]"};
     if (!(o.max_steps >= 1 && o.max_steps <= 1000000000000LL)) throw UsageError{"--max-steps: outside [1, 1e12]"};
+    {
+      bool ident = !o.function.empty() && !(o.function[0] >= '0' && o.function[0] <= '9');
+      for (const char ch : o.function)
+        ident = ident && ((ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '_');
+      if (!ident) throw UsageError{"--function: not a C++ identifier: '" + o.function + "'"};
+    }
     Problem pb;
     pb.every = o.every;
     for (const auto& name : split(o.fit)) {
@@ -233,6 +245,10 @@ Action register_calibrate(CLI::App& app) {
     }
     // The fitted values are shared by every scene: they start from the first's.
     pb.base = plant_scenes.front().params;
+    // A share at an end of its range (0 or 1: a term switched off) has no
+    // logit; its fit starts from the middle.
+    for (const auto* f : pb.fit)
+      if (f->share && !(pb.base.*(f->field) > 0.0 && pb.base.*(f->field) < 1.0)) pb.base.*(f->field) = 0.5;
     try {
       cvt::analysis::ensure_dir(o.out_dir);
       cvt::analysis::ensure_dir(o.out_dir + "/reference-cache");
@@ -383,7 +399,7 @@ Action register_calibrate(CLI::App& app) {
       std::fprintf(f, "// rms residual %.4g -> %.4g over %d residuals.\n", std::sqrt(cost0 / m), std::sqrt(cost1 / m),
                    m);
       std::fprintf(f, "#include \"cvtplant/plant/rom_params.hpp\"\n\nnamespace cvt::calibrated {\n\n");
-      std::fprintf(f, "constexpr void apply(RomParams& p) {\n");
+      std::fprintf(f, "constexpr void %s(RomParams& p) {\n", o.function.c_str());
       for (const auto& p : params)
         std::fprintf(f, "  p.%s = %.17g;\n", p["name"].get<std::string>().c_str(), p["value"].get<double>());
       std::fprintf(f, "}\n\n}  // namespace cvt::calibrated\n");

@@ -201,7 +201,8 @@ class Reader {
                  "c1_Ns_m", "k2_N_m", "c2_Ns_m", "entry_load_share", "normal_load_factor", "hold_driver_speed", "hold_driven_speed", "stick_speed_m_s",
                  "speed_limit_rad_s", "actuator_tau_s", "clamp_max_N", "sheave_mass_kg", "sheave_damping_Ns_m", "K_ax_N_m", "road_T0_Nm",
                  "road_cv_Nms_rad", "road_ca_Nms2_rad2", "road_w_eps_rad_s", "zeta1_rad", "zeta2_rad", "pitch_m",
-                 "driven_clamp_N", "radial_mass_kg", "radial_damping_Ns_m", "radial_travel_m", "radial_stop_N_m"});
+                 "driven_clamp_N", "radial_mass_kg", "radial_damping_Ns_m", "radial_travel_m", "radial_stop_N_m",
+                 "wrap_tension_share"});
     p.r1_m = number(t, pre, "r1_m", p.r1_m);
     p.r2_m = number(t, pre, "r2_m", p.r2_m);
     p.beta0_rad = number(t, pre, "beta0_deg", p.beta0_rad / kDegToRad) * kDegToRad;
@@ -236,6 +237,7 @@ class Reader {
     p.radial_damping_Ns_m = number(t, pre, "radial_damping_Ns_m", p.radial_damping_Ns_m);
     p.radial_travel_m = number(t, pre, "radial_travel_m", p.radial_travel_m);
     p.radial_stop_N_m = number(t, pre, "radial_stop_N_m", p.radial_stop_N_m);
+    p.wrap_tension_share = number(t, pre, "wrap_tension_share", p.wrap_tension_share);
   }
 
   // A parameter file (`cvtplant calibrate --out`): [params] only, applied to s.

@@ -220,6 +220,24 @@ class CvtRom {
     return c;
   }
 
+  // Forces of the two strands, k1 e_i + c1 e_i' (seed Eq. 8), with the
+  // stretch e_i = x_i, or x_i + g rho with wedging (docs/rom.md#wrap-tension).
+  template <class S>
+  struct Strands {
+    S s1, s2;
+  };
+  template <class S>
+  Strands<S> strands(const Eigen::Matrix<S, kStates, 1>& x) const {
+    if constexpr (L::kWedge) {
+      const S g(c_.wrap_g), rho = x(L::kRho), rhod = x(L::kRhoDot);
+      return {strand_force(S(c_.k1), S(c_.c1), strand_stretch(x(L::kX1), g, rho), strand_stretch(x(L::kV1), g, rhod)),
+              strand_force(S(c_.k1), S(c_.c1), strand_stretch(x(L::kX2), g, rho), strand_stretch(x(L::kV2), g, rhod))};
+    } else {
+      return {strand_force(S(c_.k1), S(c_.c1), x(L::kX1), x(L::kV1)),
+              strand_force(S(c_.k1), S(c_.c1), x(L::kX2), x(L::kV2))};
+    }
+  }
+
   // Load torque at the driven shaft (docs/rom.md#road-load).
   template <class S>
   S load_torque(const S& w2) const {
@@ -476,16 +494,17 @@ class CvtRom {
   // The rows every feature set shares: pulleys, lumps, axial, polygon phase,
   // from the radii and the tangential friction forces. With wedging r2 varies
   // and the chain frame also accelerates with r2' w2 (docs/rom.md#wedging).
+  // Returns the strands' force F_s1 + F_s2 (the radial row's wrap tension).
   template <class S>
-  void drive_train_rows(const Eigen::Matrix<S, kStates, 1>& x, const S& r1e, const S& r2, const S& F1, const S& F2,
+  S drive_train_rows(const Eigen::Matrix<S, kStates, 1>& x, const S& r1e, const S& r2, const S& F1, const S& F2,
                         const S& fax, Eigen::Matrix<S, kStates, 1>& dxdt) const {
     const S w2 = x(L::kW2);
     const S x1 = x(L::kX1), xd1 = x(L::kV1), x2 = x(L::kX2), xd2 = x(L::kV2);
     // Spring groupings match StickSlipOscillator so that the held-pulley
     // scene reproduces seed Eq. 9 to the last bit (docs/rom.md#holds).
     const S mid = S(c_.k2) * (x1 - x2) + S(c_.c2) * (xd1 - xd2);
-    const S strand1 = strand_force(S(c_.k1), S(c_.c1), x1, xd1);
-    const S strand2 = strand_force(S(c_.k1), S(c_.c1), x2, xd2);
+    const Strands<S> st = strands(x);
+    const S strand1 = st.s1, strand2 = st.s2;
     // Rates per time unit (per_tau; docs/rom.md#fixed-point). Displacement
     // rows need no factor: length unit / time unit = 1 m/s.
     const S w1dot = c_.hold1 ? S(T(0)) : per_tau((S(inputs.tau_in_Nm) - friction_torque(r1e, F1, F2)) * S(c_.inv_J1));
@@ -508,6 +527,7 @@ class CvtRom {
       dxdt(L::kDeltaDot) = per_tau((fh - fax - S(c_.cs) * dd) * S(c_.inv_ms));
     }
     if constexpr (L::kPolygon) dxdt(L::kPsi) = per_tau(x(L::kW1));
+    return strand1 + strand2;
   }
 
   // One lump of wedge_contact: tangential slip vt, radial slip along the
@@ -645,14 +665,17 @@ class CvtRom {
     #pragma GCC unroll 16
     for (int j = 0; j < N; ++j) dw2[j] = T(0);
     T w2dot(0);
-    const T strand1 = strand_force(c_.k1, c_.c1, x(L::kX1), x(L::kV1));
-    const T strand2 = strand_force(c_.k1, c_.c1, x(L::kX2), x(L::kV2));
+    // Strand stretch x_i + g rho, x_i' + g rho' (docs/rom.md#wrap-tension).
+    const Strands<T> st = strands(x);
+    const T strand1 = st.s1, strand2 = st.s2;
+    const T g = c_.wrap_g;
     if (!c_.hold2) {
       w2dot = (strand_torque(r2, strand1, strand2) - load_torque(w2)) * c_.inv_J2;
       dw2[L::kX1] = dw2[L::kX2] = r2 * c_.k1 * c_.inv_J2;
       dw2[L::kV1] = dw2[L::kV2] = r2 * c_.c1 * c_.inv_J2;
       dw2[L::kW2] = -load_torque_slope(w2) * c_.inv_J2;
-      dw2[L::kRho] = -kap * (strand1 + strand2) * c_.inv_J2;
+      dw2[L::kRho] = (-kap * (strand1 + strand2) + r2 * T(2) * g * c_.k1) * c_.inv_J2;
+      dw2[L::kRhoDot] = r2 * T(2) * g * c_.c1 * c_.inv_J2;
       #pragma GCC unroll 16
       for (int j = 0; j < N; ++j) J(L::kW2, j) = dw2[j];
     }
@@ -677,6 +700,11 @@ class CvtRom {
     J(L::kV2, L::kX2) += -(c_.k1 + c_.k2) * c_.inv_m;
     J(L::kV2, L::kV1) += c_.c2 * c_.inv_m;
     J(L::kV2, L::kV2) += -(c_.c1 + c_.c2) * c_.inv_m;
+    // Each lump's strand also stretches with g rho.
+    J(L::kV1, L::kRho) += -g * c_.k1 * c_.inv_m;
+    J(L::kV2, L::kRho) += -g * c_.k1 * c_.inv_m;
+    J(L::kV1, L::kRhoDot) += -g * c_.c1 * c_.inv_m;
+    J(L::kV2, L::kRhoDot) += -g * c_.c1 * c_.inv_m;
     J(L::kX1, L::kV1) = T(1);
     J(L::kX2, L::kV2) = T(1);
     // Axial rows.
@@ -687,7 +715,7 @@ class CvtRom {
     J(L::kDeltaDot, L::kFh) += c_.inv_ms;
     J(L::kDeltaDot, L::kDeltaDot) += -c_.cs * c_.inv_ms;
     // Radial rows: m_r rho'' = 2 tan(beta0) F_ax + sum Fr_i / cos(beta_i)
-    //   - kappa 2 tan(beta0) F_ax2 - c_r rho' - F_stop.
+    //   - kappa 2 tan(beta0) F_ax2 - c_r rho' - F_stop - g (F_s1 + F_s2).
     J(L::kRho, L::kRhoDot) = T(1);
     #pragma GCC unroll 16
     for (int j = 0; j < N; ++j)
@@ -695,6 +723,13 @@ class CvtRom {
     const T stop_slope = stop_penetration(rho) != T(0) ? c_.k_stop : T(0);
     J(L::kRhoDot, L::kRho) += (-dkap * c_.driven_force - stop_slope) * c_.inv_mr;
     J(L::kRhoDot, L::kRhoDot) += -c_.cr * c_.inv_mr;
+    // - g (F_s1 + F_s2), the wrap-tension pull (docs/rom.md#wrap-tension).
+    J(L::kRhoDot, L::kX1) += -g * c_.k1 * c_.inv_mr;
+    J(L::kRhoDot, L::kX2) += -g * c_.k1 * c_.inv_mr;
+    J(L::kRhoDot, L::kV1) += -g * c_.c1 * c_.inv_mr;
+    J(L::kRhoDot, L::kV2) += -g * c_.c1 * c_.inv_mr;
+    J(L::kRhoDot, L::kRho) += -T(2) * g * g * c_.k1 * c_.inv_mr;
+    J(L::kRhoDot, L::kRhoDot) += -T(2) * g * g * c_.c1 * c_.inv_mr;
     if constexpr (L::kPolygon) J(L::kPsi, L::kW1) = T(1);
   }
 
@@ -718,12 +753,13 @@ class CvtRom {
   void derivative_wedge_given(const Eigen::Matrix<S, kStates, 1>& x, const S& r1e, const S& r2, const S& fax,
                               const WedgeContact<S>& c, Eigen::Matrix<S, kStates, 1>& dxdt) const {
     const S rhod = x(L::kRhoDot);
-    drive_train_rows(x, r1e, r2, c.F1, c.F2, fax, dxdt);
+    const S strands_sum = drive_train_rows(x, r1e, r2, c.F1, c.F2, fax, dxdt);
     // m_r rho'' = 2 tan(beta0) F_b + sum F_r,i / cos(beta_i) - kappa(rho) 2 tan(beta0) F_ax2 - c_r rho' - F_stop
+    //            - g (F_s1 + F_s2)   (docs/rom.md#wrap-tension)
     dxdt(L::kRho) = rhod;
     dxdt(L::kRhoDot) = (S(c_.two_tan_b0) * fax + c.Fr1 * S(c_.inv_cos1) + c.Fr2 * S(c_.inv_cos2) -
                         ratio_slope(x(L::kRho)) * S(c_.driven_force) - S(c_.cr) * rhod -
-                        S(c_.k_stop) * stop_penetration(x(L::kRho))) *
+                        S(c_.k_stop) * stop_penetration(x(L::kRho)) - wrap_tension_pull(S(c_.wrap_g), strands_sum)) *
                        S(c_.inv_mr);
   }
 

@@ -32,10 +32,11 @@ struct RomConstants {
   T T0{}, cv{}, ca{}, inv_w_eps{};
   T alpha{};
   T a1{}, a2{}, a3{}, two_tan_b0{}, tan1{}, tan2{}, inv_mr{}, cr{}, driven_force{}, travel{}, k_stop{}, q0{};
+  T wrap_g{};  // eta theta1: the strands' stretch per radial position (docs/rom.md#wrap-tension)
   T floor_speed{}, slope_floor{};  // docs/rom.md#slope-floor
   struct Accounting {
     A J1{}, J2{}, m{}, k1{}, k2{}, c1{}, c2{}, r2{}, ms{}, cs{}, K_ax{};
-    A mr{}, cr{}, a1{}, a2{}, a3{}, two_tan_b0{}, driven_force{}, k_stop{};
+    A mr{}, cr{}, a1{}, a2{}, a3{}, two_tan_b0{}, driven_force{}, k_stop{}, wrap_g{};
   };
   Accounting acc;  // the energy ledger's copies, in the accounting type
   double two_tan_b0_si = 0.0;  // 2 tan(beta0), set-up copy for set_driven_clamp
@@ -140,6 +141,10 @@ struct RomConstants {
       acc.a3 = A(a3_1_m2);
       acc.two_tan_b0 = A(2.0 * tb);
       acc.driven_force = A(2.0 * tb * p.driven_clamp_N);
+      // docs/rom.md#wrap-tension: the set-up driver wrap angle theta1.
+      const double g = p.wrap_tension_share * seed::wrap_angle_driver_rad(p.r1_m, p.r2_m, p.center_distance_m);
+      wrap_g = T(g);
+      acc.wrap_g = A(g);
     }
     // Accounting copies (docs/rom.md#energy-balance).
     acc.J1 = A(p.J1_kgm2);

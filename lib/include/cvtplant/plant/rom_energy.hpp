@@ -103,8 +103,14 @@ inline RomAcc<typename Plant::Scalar> rom_stored_energy(const Plant& plant,
   const Acc vc = r2 * w2;
   const Acc u1 = vc + x[L::kV1], u2 = vc + x[L::kV2];
   const Acc dx = x[L::kX1] - x[L::kX2];
+  // Strand stretches (docs/rom.md#wrap-tension).
+  Acc e1 = x[L::kX1], e2 = x[L::kX2];
+  if constexpr (L::kWedge) {
+    e1 = strand_stretch(e1, a.wrap_g, x[L::kRho]);
+    e2 = strand_stretch(e2, a.wrap_g, x[L::kRho]);
+  }
   Acc e = Acc(0.5) * (a.J1 * w1 * w1 + a.J2 * w2 * w2 + a.m * (u1 * u1 + u2 * u2) +
-                      a.k1 * (x[L::kX1] * x[L::kX1] + x[L::kX2] * x[L::kX2]) + a.k2 * dx * dx);
+                      a.k1 * (e1 * e1 + e2 * e2) + a.k2 * dx * dx);
   if constexpr (L::kAxial) {
     Acc b = x[L::kDelta];
     if constexpr (L::kWedge) b -= a.two_tan_b0 * x[L::kRho];
@@ -137,7 +143,13 @@ inline RomPower<RomAcc<typename Plant::Scalar>> rom_power_given(
   pw.load_W = rom_to_acc(tau_load) * x[L::kW2];
   pw.friction_loss_W = -(rom_to_acc(F1) * rom_to_acc(vr1) + rom_to_acc(F2) * rom_to_acc(vr2));
   const Acc dv = x[L::kV1] - x[L::kV2];
-  pw.damping_loss_W = a.c1 * (x[L::kV1] * x[L::kV1] + x[L::kV2] * x[L::kV2]) + a.c2 * dv * dv;
+  // Strand stretch rates (docs/rom.md#wrap-tension).
+  Acc sv1 = x[L::kV1], sv2 = x[L::kV2];
+  if constexpr (L::kWedge) {
+    sv1 = strand_stretch(sv1, a.wrap_g, x[L::kRhoDot]);
+    sv2 = strand_stretch(sv2, a.wrap_g, x[L::kRhoDot]);
+  }
+  pw.damping_loss_W = a.c1 * (sv1 * sv1 + sv2 * sv2) + a.c2 * dv * dv;
   if constexpr (L::kAxial) {
     pw.actuator_W = x[L::kFh] * x[L::kDeltaDot];
     pw.damping_loss_W += a.cs * x[L::kDeltaDot] * x[L::kDeltaDot];
@@ -159,8 +171,8 @@ inline RomPower<RomAcc<typename Plant::Scalar>> rom_power(const Plant& plant, co
   const T tau_in = c.hold1 ? friction_torque(contact.r1e, F1, F2) : plant.inputs.tau_in_Nm;
   T tau_load;
   if (c.hold2) {
-    tau_load = strand_torque(c.r2, strand_force(c.k1, c.c1, xs(L::kX1), xs(L::kV1)),
-                             strand_force(c.k1, c.c1, xs(L::kX2), xs(L::kV2)));
+    const auto st = plant.strands(xs);
+    tau_load = strand_torque(c.r2, st.s1, st.s2);
   } else {
     tau_load = plant.load_torque(xs(L::kW2));
   }

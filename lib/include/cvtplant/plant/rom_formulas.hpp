@@ -25,6 +25,23 @@ inline S strand_force(const S& k1, const S& c1, const S& x, const S& xd) {
   return k1 * x + c1 * xd;
 }
 
+// Stretch of a lump's strand with the wrap-tension coupling, x + g rho
+// (g = eta theta1; docs/rom.md#wrap-tension): the chain that the driver wrap
+// gives up when it sinks by -rho goes into the strands. Applied alike to the
+// stretch and its rate.
+template <class S>
+inline S strand_stretch(const S& x, const S& g, const S& rho) {
+  return x + g * rho;
+}
+
+// Inward pull of the wrap tension on the chain's radial position, g (F_s1 +
+// F_s2): theta1 times the driver wrap's mean tension in excess of the driven
+// wrap's, eta (F_s1 + F_s2) (docs/rom.md#wrap-tension) [N]; strands_sum = F_s1 + F_s2.
+template <class S>
+inline S wrap_tension_pull(const S& g, const S& strands_sum) {
+  return g * strands_sum;
+}
+
 // Torque of both strands on the driven pulley, r2 (F_s1 + F_s2).
 template <class S>
 inline S strand_torque(const S& r2, const S& strand1, const S& strand2) {

@@ -60,9 +60,12 @@ inline RomOutputs<typename Plant::Scalar> rom_outputs(const Plant& plant,
   }
   o.torque_transmitted_Nm = friction_torque(r1e, o.friction1_N, o.friction2_N);
   o.tau_in_Nm = c.hold1 ? o.torque_transmitted_Nm : plant.inputs.tau_in_Nm;
-  o.tau_load_Nm = c.hold2 ? strand_torque(r2, strand_force(c.k1, c.c1, x(L::kX1), x(L::kV1)),
-                                          strand_force(c.k1, c.c1, x(L::kX2), x(L::kV2)))
-                          : plant.load_torque(w2);
+  if (c.hold2) {
+    const auto st = plant.strands(x);
+    o.tau_load_Nm = strand_torque(r2, st.s1, st.s2);
+  } else {
+    o.tau_load_Nm = plant.load_torque(w2);
+  }
   o.stick1 = abs(o.v_rel1_m_s) < c.stick_speed;
   o.stick2 = abs(o.v_rel2_m_s) < c.stick_speed;
   return o;

@@ -82,6 +82,10 @@ struct RomParams {
   double radial_damping_Ns_m = 93.8;           // zeta = 0.05 of the chain-on-bolt mode (74 Hz)
   double radial_travel_m = 0.025;              // |r1 - r1_m| at the ratio end stops (pulley hub / rim)
   double radial_stop_N_m = 1.0e7;              // end-stop contact stiffness; 2x the travel is a fault
+  // docs/rom.md#wrap-tension: the driver wrap's mean tension exceeds the
+  // driven wrap's by eta times the strands' tension difference; 0 is the
+  // no-load thrust ratio (the ratio holds under torque).
+  double wrap_tension_share = 0.0;             // eta in [0, 1]
 };
 
 // The fastest driver whose link passing an integrator step of `step_s`

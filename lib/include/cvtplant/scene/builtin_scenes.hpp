@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "cvtplant/scene/calibrated_params.hpp"
+#include "cvtplant/scene/calibrated_wrap_tension.hpp"
 #include "cvtplant/scene/scene.hpp"
 
 namespace cvt {
@@ -16,11 +17,15 @@ namespace builtin_detail {
 // of the driver wrap's normal load that the reference's strand tensions
 // give, and the parameters fitted to the reference by `cvtplant calibrate`
 // (calibrated_params.hpp, written with tools/params/calibrated.toml;
-// docs/validation.md#calibrated-set). clamp-step and tip-in, which the
-// reference cannot run, keep the seed's even wrap.
+// docs/validation.md#calibrated-set), and the wrap-tension share the
+// variable-ratio plant fitted to the reference's ratio under load
+// (calibrated_wrap_tension.hpp, with tools/params/wrap-tension.toml; it acts
+// only with the wedging feature, docs/rom.md#wrap-tension). clamp-step and
+// tip-in, which the reference cannot run, keep the seed's even wrap.
 constexpr void calibrated_wrap(RomParams& p) {
   p.entry_load_share = 0.705;
   calibrated::apply(p);
+  calibrated::apply_wrap_tension(p);
 }
 
 // Seed section 3 oscillator (Eq. 9) as a plant with both pulleys held:

@@ -254,6 +254,8 @@ inline SceneIssue validate_scene(const Scene& s) {
           2 * p.radial_travel_m < p.r2_m))
       return bad("radial_travel_m", "must be in (0, min(r1, r2)/2)");
     if (!(fin(p.radial_stop_N_m) && p.radial_stop_N_m > 0)) return bad("radial_stop_N_m", "must be > 0");
+    if (!(fin(p.wrap_tension_share) && p.wrap_tension_share >= 0 && p.wrap_tension_share < 1))
+      return bad("wrap_tension_share", "must be in [0, 1)");
     // Eq. 7 divides by 1 + tan(beta) mu g_r/|v| >= 1 - mu_max tan(beta): at
     // mu_max tan(beta) >= 1 the chain self-locks in the groove.
     const double mu_max = f.law == FrictionLaw::case2 ? f.mu0 * f.sigma : f.mu0;
