@@ -11,11 +11,15 @@
 namespace cvt::rom_cost {
 
 // One row: a built-in scene run with the plant of the visited mask, at
-// `substeps` per frame (0: the scene's own setting).
+// `substeps` per frame (0: the scene's own setting), with or without the
+// energy ledger (Scene::energy_ledger) and with the scene's integrator or
+// the one named in `integrator`.
 struct Case {
   const char* label;
   const char* scene;
   int substeps;
+  bool energy_ledger = true;
+  const char* integrator = nullptr;
 };
 
 // The feature mask is a template argument of the plant, so the rows are
@@ -29,6 +33,12 @@ void for_each_case(Visitor&& v) {
   v.template visit<0>(Case{"scene/oscillator-coulomb", "oscillator-coulomb", 0});
   v.template visit<0>(Case{"scene/oscillator-stribeck", "oscillator-stribeck", 0});
   v.template visit<f::axial>(Case{"scene/seed-case1", "seed-case1", 0});
+  // The default scene's own choices (docs/rom.md#cost): without the ledger,
+  // and without it in linearly implicit Euler (its error against the
+  // converged reference is in docs/rom.md#real-time-integrator).
+  v.template visit<f::axial>(Case{"scene/seed-case1/no-ledger", "seed-case1", 0, false});
+  v.template visit<f::axial>(Case{"scene/seed-case1/no-ledger/lin-impl-euler", "seed-case1", 0, false,
+                                  "linear-implicit-euler"});
   v.template visit<f::axial>(Case{"scene/seed-case2", "seed-case2", 0});
   v.template visit<f::axial | f::road_load>(Case{"scene/clamp-step", "clamp-step", 0});
   v.template visit<f::axial | f::road_load>(Case{"scene/tip-in", "tip-in", 0});
@@ -46,6 +56,8 @@ void for_each_case(Visitor&& v) {
   // end stops, and clamp-step with wedging, whose 1.2 kN has driven the chain
   // onto the hub stop by 1 s: a frame in stop_substeps steps (docs/rom.md#end-stop).
   v.template visit<f::axial | f::road_load | f::wedging>(Case{"scene/ratio-control", "ratio-control", 0});
+  v.template visit<f::axial | f::road_load | f::wedging>(
+      Case{"scene/ratio-control/no-ledger", "ratio-control", 0, false});
   v.template visit<f::axial | f::road_load | f::wedging>(Case{"scene/clamp-step+wedging-on-stop", "clamp-step", 0});
 }
 
@@ -64,6 +76,9 @@ struct Frame {
   static Scene scene_of(const Case& c) {
     Scene s = *find_builtin_scene(c.scene);
     if (c.substeps > 0) s.substeps = c.substeps;
+    s.energy_ledger = c.energy_ledger;
+    if (!c.energy_ledger) s.log &= ~rom_log::energy;
+    if (c.integrator != nullptr) parse_method(c.integrator, s.method);
     return s;
   }
 

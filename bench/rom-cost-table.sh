@@ -5,7 +5,11 @@
 #   - Cortex-M4F instructions per 1 ms frame in float (QEMU icount; the
 #     target test tests/target/test_rom_cost.cpp prints ICOUNT lines),
 #   - host ns per frame in float and double (bench/bench_rom.cpp, median of
-#     5 repetitions; this host is shared, so read ratios, not absolutes).
+#     5 repetitions of the CPU time: on a shared host the wall time also
+#     counts the time other jobs held the core; read ratios, not absolutes),
+#   - the spread of a frame's cost over 20,000 consecutive frames of each
+#     scene in double (median, p99.9, max; wall time of each frame, so the
+#     tail includes preemption on a loaded host).
 # Builds what it needs: the cortex-m4f preset's target image and bench_rom in
 # a host Release tree.
 #
@@ -32,7 +36,7 @@ cmake --build "$host" --target bench_rom >&2
 python3 - "$m4_log" "$work/bench.json" <<'EOF'
 import json, sys
 log, bench = sys.argv[1], sys.argv[2]
-m4, parts, fixed = {}, [], {}
+m4, parts, fixed, wparts = {}, [], {}, []
 for line in open(log, errors="replace"):
     f = line.split()
     if len(f) == 5 and f[:3] == ["ICOUNT", "rom_frame", "float"]:
@@ -41,11 +45,16 @@ for line in open(log, errors="replace"):
         fixed[f[3]] = int(f[4])
     elif len(f) == 5 and f[:3] == ["ICOUNT", "rom_part", "float"]:
         parts.append((f[3], int(f[4])))
-ns = {}
+    elif len(f) == 5 and f[:3] == ["ICOUNT", "rom_part_wedging", "float"]:
+        wparts.append((f[3], int(f[4])))
+ns, spread = {}, {}
 for b in json.load(open(bench))["benchmarks"]:
     if b.get("aggregate_name") == "median":
         scale = {"ns": 1, "us": 1e3, "ms": 1e6}[b["time_unit"]]
-        ns[b["run_name"]] = b["real_time"] * scale
+        if b["run_name"].startswith("spread/"):
+            spread[b["run_name"][len("spread/"):]] = b
+        else:
+            ns[b["run_name"]] = b["cpu_time"] * scale
 if not m4:
     sys.exit("no ICOUNT rom_frame lines in " + log)
 print("| row | M4F instr/frame (float) | host ns/frame float | host ns/frame double |")
@@ -63,4 +72,18 @@ if parts:
     print("|---|---:|")
     for name, n in parts:
         print("| %s | %d |" % (name, n))
+if wparts:
+    print()
+    print("| part of a ratio-control frame (float, M4F) | instructions |")
+    print("|---|---:|")
+    for name, n in wparts:
+        print("| %s | %d |" % (name, n))
+if spread:
+    print()
+    print("| scene, 20,000 consecutive frames (double, host wall time) | median ns | p99.9 ns | max ns | p99.9 / median | max / median |")
+    print("|---|---:|---:|---:|---:|---:|")
+    for label, b in spread.items():
+        label = label.replace("/iterations:1", "")
+        print("| %s | %.0f | %.0f | %.0f | %.2f | %.2f |" % (label, b["median_ns"], b["p999_ns"], b["max_ns"],
+                                                          b["p999_over_median"], b["max_over_median"]))
 EOF

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
@@ -44,6 +45,12 @@ std::string png_terminal(int width_px, int height_px) {
 namespace {
 
 const std::string kTerm = png_terminal(900, 600) + "set grid\n";
+
+std::string fmt_g(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
 
 }  // namespace
 
@@ -101,7 +108,7 @@ std::vector<std::string> series_figures(const std::vector<double>& x_raw, double
   {
     auto s = open_text_file(D + "series.gp");
     s << kTerm;
-    s << "set output '" << D << "time_history.png'\nset title '" << label << ": time history'\nset xlabel 't'\n"
+    s << "set output '" << D << "time_history.png'\nset title '" << label << ": time history'\nset xlabel 'time t [s]'\n"
       << "plot '" << D << "series.dat' u 1:2 w l notitle\n";
     s << "set output '" << D << "delay_reconstruction.png'\nset size square\nset title '" << label
       << ": delay reconstruction, tau = " << tau << " samples (normalised)'\nset xlabel 's(t)'\nset ylabel 's(t+tau)'\n"
@@ -115,7 +122,7 @@ std::vector<std::string> series_figures(const std::vector<double>& x_raw, double
       << "set autoscale y\n";
     s << "set output '" << D << "divergence.png'\nset title sprintf('" << label
       << ": Rosenstein divergence, m=%d tau=%d, slope %.4g +- %.2g', " << m << ", " << tau << ", " << lle.fit.slope
-      << ", " << lle.fit.ci95 << ")\nset xlabel 't'\nset ylabel '<ln d(t)>'\n"
+      << ", " << lle.fit.ci95 << ")\nset xlabel 'time t [s]'\nset ylabel '<ln d(t)>'\n"
       << "f(t) = " << y0 << " + " << lle.fit.slope << "*(t - " << t0 << ")\n"
       << "plot '" << D << "divergence.dat' u 1:2 w l t 'divergence', [" << t0 << ":" << t1
       << "] f(x) lw 2 t '" << (lle.fit.scaling_region ? "fit (scaling region)" : "fit (no scaling region: a bound only)")
@@ -126,7 +133,24 @@ std::vector<std::string> series_figures(const std::vector<double>& x_raw, double
   std::vector<double> head(x.begin(), x.begin() + static_cast<long>(std::min<std::size_t>(x.size(), 4000 + (m - 1) * tau)));
   const Embedding e = delay_embed(head, m, tau);
   const double eps = radius_for_rr(e, 0.05, w);
-  write_recurrence_png(e, eps, -1, D + "recurrence.png", 1000);
+  // The matrix as pixels (libpng), then drawn by gnuplot with its axes in
+  // time and the embedding and radius that made it in the title.
+  write_recurrence_png(e, eps, -1, D + "recurrence_matrix.png", 1000);
+  {
+    const std::size_t side = std::min<std::size_t>(e.n, 1000);
+    const double px = static_cast<double>(e.n) * dt / static_cast<double>(side);  // one pixel [s]
+    const double span = static_cast<double>(e.n) * dt;
+    auto r = open_text_file(D + "recurrence.gp");
+    r << png_terminal(900, 900) << "set output '" << D << "recurrence.png'\n"
+      << "set title \"" << label << ": recurrence plot of the first " << e.n << " points\\nm = " << m
+      << ", tau = " << tau << " samples (" << fmt_g(tau * dt) << " s), eps = " << fmt_g(eps)
+      << " (z-scored units, recurrence rate 5 %), Euclidean norm\"\n"
+      << "set xlabel 'time t_i [s]'\nset ylabel 'time t_j [s]'\nset size ratio -1\n"
+      << "set xrange [0:" << span << "]\nset yrange [0:" << span << "]\nset tics out\n"
+      << "plot '" << D << "recurrence_matrix.png' binary filetype=png dx=" << px << " dy=" << px
+      << " origin=(0,0) with rgbimage notitle\n";
+  }
+  run_gnuplot(D + "recurrence.gp");
   return {D + "time_history.png", D + "delay_reconstruction.png", D + "ami.png", D + "fnn.png", D + "divergence.png",
           D + "recurrence.png"};
 }
@@ -179,17 +203,31 @@ std::vector<std::string> model_figures(const Model& sc, const Params& p, const s
     }
   }
   std::vector<std::string> out;
+  // What made the figure: the model, its integrator and step, its parameters.
+  std::string made = sc.name + (sc.is_map ? ": iterated map" : ": RK4, dt = " + fmt_g(dt) + " s");
+  for (const auto& [k, v] : p) made += ", " + k + " = " + fmt_g(v);
+  const std::string t_axis = sc.is_map ? "iteration n" : "time t (model time units)";
   auto s = open_text_file(D + "scene.gp");
-  s << kTerm;
-  s << "set output '" << D << "scene_time_history.png'\nset title '" << sc.name << ": time history'\nset xlabel 't'\nplot ";
-  for (int k = 0; k < sc.dim; k += (sc.dim == 4 ? 2 : 1))
-    s << (k ? ", " : "") << "'" << D << "scene.dat' u 1:" << k + 2 << " w l t '" << sc.state_names[k] << "'";
-  s << "\n";
+  // One panel per state on a shared time axis (the states of a model may
+  // differ in scale and unit); tick labels and the axis title on the bottom
+  // panel only.
+  const int n = sc.dim;
+  const int height = 150 * n + 90;
+  s << png_terminal(1000, height) << "set grid\nset output '" << D << "scene_time_history.png'\n"
+    << "set lmargin at screen 0.1\nset rmargin at screen 0.97\nset multiplot title '" << made << "'\n";
+  const double top = 1.0 - 60.0 / height, bottom = 50.0 / height, h = (top - bottom) / n;
+  for (int k = 0; k < n; ++k) {
+    s << "set tmargin at screen " << top - k * h << "\nset bmargin at screen " << top - (k + 1) * h + 0.01 << '\n';
+    s << (k + 1 == n ? "set format x '%g'\nset xlabel '" + t_axis + "'\n" : std::string("set format x ''\nunset xlabel\n"));
+    s << "set ylabel '" << sc.state_names[k] << "'\nplot '" << D << "scene.dat' u 1:" << k + 2
+      << (sc.is_map ? " w d" : " w l") << " notitle\n";
+  }
+  s << "unset multiplot\nreset\n" << kTerm;
   out.push_back(D + "scene_time_history.png");
   // Phase portraits: (x1, v1) and (x2, v2) for the oscillator, (x, y) otherwise.
   for (int k = 0; k + 1 < sc.dim; k += 2) {
     const std::string png = D + "scene_phase_" + sc.state_names[k] + ".png";
-    s << "set output '" << png << "'\nset title '" << sc.name << ": phase portrait'\nset xlabel '" << sc.state_names[k]
+    s << "set output '" << png << "'\nset title \"" << made << "\\nphase portrait\"\nset xlabel '" << sc.state_names[k]
       << "'\nset ylabel '" << sc.state_names[k + 1] << "'\nplot '" << D << "scene.dat' u " << k + 2 << ":" << k + 3
       << (sc.is_map ? " w d" : " w l") << " notitle\n";
     out.push_back(png);
@@ -213,6 +251,32 @@ std::vector<std::string> sweep_figures(const std::string& sweep_csv, const std::
     while (std::getline(hs, c, ',')) cols.push_back(c);
   }
   const bool two_d = sig.find(" a2=") != std::string::npos;
+  // What made the sweep, from its signature: the scene, the fixed
+  // parameters, the run lengths and the state whose maxima are drawn.
+  std::map<std::string, std::string> made;
+  std::string fixed;
+  {
+    std::stringstream ss(sig.substr(std::string("# cvtplant sweep ").size()));
+    std::string tok;
+    while (ss >> tok) {
+      const std::size_t eq = tok.find('=');
+      if (eq == std::string::npos) continue;
+      const std::string k = tok.substr(0, eq), v = tok.substr(eq + 1);
+      // Numbers are written with 17 digits; the title shows them short.
+      char* end = nullptr;
+      const double num = std::strtod(v.c_str(), &end);
+      made[k] = k != "scene" && k != "a1" && k != "a2" && k != "x0" && end != v.c_str() && *end == '\0' ? fmt_g(num) : v;
+      if (k != "scene" && k != "a1" && k != "a2" && k != "x0" && k != "dt" && k != "t_transient" && k != "t_end" &&
+          k != "state" && k != "total")
+        fixed += ", " + k + " = " + made[k];
+    }
+  }
+  const bool is_map = has_model(made["scene"]) && find_model(made["scene"]).is_map;
+  const std::string runs = is_map ? "transient " + made["t_transient"] + ", accumulation " + made["t_end"] + " iterations"
+                                  : "RK4 dt = " + made["dt"] + " s, transient " + made["t_transient"] +
+                                        " s, accumulation " + made["t_end"] + " s";
+  const std::string subtitle = made["scene"] + fixed + "; " + runs;
+  const std::string lambda_unit = is_map ? "[1/iteration]" : "[1/s]";
   const std::string D = out_dir + "/";
   auto bif = open_text_file(D + "bifurcation.dat");
   auto lam = open_text_file(D + "exponents.dat");
@@ -244,20 +308,23 @@ std::vector<std::string> sweep_figures(const std::string& sweep_csv, const std::
   lam.close();
   auto s = open_text_file(D + "sweep.gp");
   s << kTerm;
-  s << "set output '" << D << "bifurcation.png'\nset title 'bifurcation diagram (local maxima)'\nset xlabel '" << cols[1]
-    << "'\nset ylabel 'peak value'\n";
+  s << "set output '" << D << "bifurcation.png'\nset title \"bifurcation diagram: local maxima of state "
+    << made["state"] << " against " << cols[1] << "\\n" << subtitle << "\"\nset xlabel '" << cols[1]
+    << "'\nset ylabel 'local maxima of state " << made["state"] << "'\n";
   if (two_d)
-    s << "plot '" << D << "bifurcation.dat' u 1:3:2 w p pt 7 ps 0.3 palette t 'colour: " << cols[2] << "'\n";
+    s << "set cblabel '" << cols[2] << "'\nplot '" << D << "bifurcation.dat' u 1:3:2 w p pt 7 ps 0.3 palette notitle\n";
   else
     s << "plot '" << D << "bifurcation.dat' u 1:3 w p pt 7 ps 0.3 notitle\n";
   s << "set output '" << D << "exponent_map.png'\n";
   if (two_d)
-    s << "set title 'largest Lyapunov exponent'\nset xlabel '" << cols[1] << "'\nset ylabel '" << cols[2]
-      << "'\nset view map\nset palette defined (-1 'blue', 0 'white', 1 'red')\nset cbrange [" << -lam_abs << ":"
-      << lam_abs << "]\nset cblabel 'lambda_1 (white = 0)'\nsplot '" << D
-      << "exponents.dat' u 1:2:3 w pm3d notitle\n";
+    s << "set title \"largest Lyapunov exponent lambda_1 " << lambda_unit << " over " << cols[1] << " and " << cols[2]
+      << "\\n" << subtitle << "\"\nset xlabel '" << cols[1] << "'\nset ylabel '" << cols[2]
+      << "'\nset palette defined (-1 'blue', 0 'white', 1 'red')\nset cbrange [" << -lam_abs << ":"
+      << lam_abs << "]\nset cblabel 'lambda_1 " << lambda_unit << " (white = 0)'\nplot '" << D
+      << "exponents.dat' u 1:2:3 w image notitle\n";  // one cell per grid point, its own colour
   else
-    s << "set title 'largest Lyapunov exponent'\nset xlabel '" << cols[1] << "'\nset ylabel 'lambda_1'\nplot '" << D
+    s << "set title \"largest Lyapunov exponent against " << cols[1] << "\\n" << subtitle << "\"\nset xlabel '"
+      << cols[1] << "'\nset ylabel 'lambda_1 " << lambda_unit << "'\nplot '" << D
       << "exponents.dat' u 1:3 w lp notitle, 0 lc 'black' notitle\n";
   s.close();
   run_gnuplot(D + "sweep.gp");

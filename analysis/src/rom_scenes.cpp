@@ -259,10 +259,15 @@ std::vector<double> rom_trajectory(const cvt::Scene& base, const std::string& na
 
 }  // namespace
 
+// The core states every plant has (rom_layout.hpp), sampled in SI units.
+constexpr const char* kStateSignals[] = {"x1", "xd1", "x2", "xd2"};
+constexpr int kStateSignalIndex[] = {2, 3, 4, 5};
+
 const std::vector<std::string>& rom_signal_names() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> v;
     for (const auto& d : kSignals) v.push_back(d.name);
+    for (const char* n : kStateSignals) v.push_back(n);
     return v;
   }();
   return names;
@@ -273,16 +278,21 @@ RomSeries rom_scene_series(const cvt::Scene& scene, const std::string& name, con
   cvt::Scene s = scene;
   if (t_end > 0) s.t_end_s = t_end;
   std::vector<const SignalDef*> defs;
+  std::vector<std::pair<std::string, int>> states;  // name, state index
   for (const auto& sig : signals) {
     const SignalDef* d = nullptr;
     for (const auto& k : kSignals)
       if (sig == k.name) d = &k;
-    if (d == nullptr) {
+    int state = -1;
+    for (int k = 0; k < 4; ++k)
+      if (sig == kStateSignals[k]) state = kStateSignalIndex[k];
+    if (d == nullptr && state < 0) {
       std::string known;
-      for (const auto& k : kSignals) known += (known.empty() ? "" : ", ") + std::string(k.name);
+      for (const auto& k : rom_signal_names()) known += (known.empty() ? "" : ", ") + k;
       throw InputError("unknown signal '" + sig + "' (known: " + known + ")");
     }
-    defs.push_back(d);
+    if (d != nullptr) defs.push_back(d);
+    else states.emplace_back(sig, state);
   }
   RomSeries r;
   r.scene = name;
@@ -293,6 +303,11 @@ RomSeries rom_scene_series(const cvt::Scene& scene, const std::string& name, con
     const Outputs o = sim.outputs();
     r.t.push_back(t);
     for (const SignalDef* d : defs) r.signal[d->name].push_back(o.*(d->member));
+    if (!states.empty()) {
+      double xs[cvt::kRomMaxStates];
+      sim.state_si(xs);
+      for (const auto& [n, k] : states) r.signal[n].push_back(xs[k]);
+    }
     return true;
   });
   r.fault = cvt::rom_fault_name(fault);

@@ -138,6 +138,7 @@ RqaResult rqa(const Embedding& e, const RqaOptions& opt) {
   std::vector<std::uint32_t> row;
   std::uint64_t rec_upper = 0;
   for (std::size_t i = 0; i < e.n; ++i) {
+    if ((i & 4095) == 0 && opt.progress) opt.progress(static_cast<double>(i), static_cast<double>(e.n));
     index.within(i, eps, w, row);
     for (std::uint32_t j : row)
       if (j > i) {

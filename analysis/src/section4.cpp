@@ -27,7 +27,12 @@ Section4Result section4_pipeline(const std::vector<double>& x_all, const Section
   r.stddev = stddev(x);
   r.min = *std::min_element(x.begin(), x.end());
   r.max = *std::max_element(x.begin(), x.end());
+  constexpr int kStages = 5;
+  auto stage = [&](int k) {
+    if (opt.on_stage) opt.on_stage(k, kStages);
+  };
   r.figures.push_back(run_time_history_figure(x_all, opt.dt, opt.discard, label, out_dir));
+  stage(1);
   const double scale = std::max(std::abs(r.min), std::abs(r.max));
   char buf[320];
   if (r.stddev <= opt.constant_rel_std * std::max(scale, 1e-300)) {
@@ -43,6 +48,7 @@ Section4Result section4_pipeline(const std::vector<double>& x_all, const Section
     r.evidence.push_back(buf);
     r.evidence.push_back("no delay, dimension, exponent or recurrence analysis exists for a constant series "
                          "(normalising divides by its zero standard deviation)");
+    stage(kStages);
     return r;
   }
   validate_series(x, 500, label);
@@ -57,6 +63,7 @@ Section4Result section4_pipeline(const std::vector<double>& x_all, const Section
   r.confidence = r.verdict.confidence;
   r.evidence = r.verdict.reasons;
   const Classification& c = r.verdict;
+  stage(2);
   // The estimators classify does not run: Cao's dimension and Kantz's
   // exponent, with classify's embedding and Theiler window.
   const std::vector<double> z = zscore(x);
@@ -65,6 +72,7 @@ Section4Result section4_pipeline(const std::vector<double>& x_all, const Section
   cao_opt.m_max = 10;
   cao_opt.theiler = c.theiler;
   r.cao = cao(z, cao_opt);
+  stage(3);
   try {
     r.kantz = lle_kantz(z, c.lle_options);
   } catch (const InputError& e) {
@@ -72,8 +80,10 @@ Section4Result section4_pipeline(const std::vector<double>& x_all, const Section
     // neighbourhoods outside the Theiler window; the rest still stands.
     r.kantz_error = e.what();
   }
+  stage(4);
   const auto f = series_figures(x, opt.dt, label, out_dir, c.tau, c.m);
   r.figures.insert(r.figures.end(), f.begin(), f.end());
+  stage(kStages);
   return r;
 }
 

@@ -79,7 +79,8 @@ std::vector<double> local_maxima(const std::vector<double>& rows, int dim, int s
 
 }  // namespace
 
-std::vector<SweepPoint> run_sweep(const SweepSpec& spec, int shard_i, int shard_n, int jobs) {
+std::vector<SweepPoint> run_sweep(const SweepSpec& spec, int shard_i, int shard_n, int jobs,
+                                  const std::function<void(long done, long total)>& on_point) {
   const Model& scene = spec.model != nullptr ? *spec.model : find_model(spec.scene);
   if (shard_n < 1 || shard_i < 0 || shard_i >= shard_n) throw InputError("shard must be i/N with 0 <= i < N");
   if (spec.bif_state < 0 || spec.bif_state >= scene.dim)
@@ -103,6 +104,7 @@ std::vector<SweepPoint> run_sweep(const SweepSpec& spec, int shard_i, int shard_
   for (long k = shard_i; k < spec.total(); k += shard_n) mine.push_back(k);
   std::vector<SweepPoint> out(mine.size());
   std::atomic<std::size_t> next{0};
+  std::atomic<long> finished{0};
   auto worker = [&] {
     while (true) {
       const std::size_t t = next.fetch_add(1);
@@ -129,6 +131,8 @@ std::vector<SweepPoint> run_sweep(const SweepSpec& spec, int shard_i, int shard_
       } catch (const std::exception& e) {
         pt.error = e.what();
       }
+      const long done = finished.fetch_add(1) + 1;
+      if (on_point) on_point(done, static_cast<long>(mine.size()));
     }
   };
   if (jobs <= 0) jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));

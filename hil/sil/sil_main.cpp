@@ -480,6 +480,7 @@ struct Sample {
 
 struct ScenarioResult {
   std::string name;
+  std::string what;  // the scenario in one line (JUnit property "description")
   double wall_s = 0;
   std::vector<Check> checks;
   bool pass() const {
@@ -648,6 +649,7 @@ ScenarioResult run_scenario(const Scenario& sc, Harness& h, FaultInjector& hf, c
   const std::int64_t t0 = clock.now_ns();
   ScenarioResult res;
   res.name = sc.name;
+  res.what = sc.what;
   std::vector<Sample> trace;
   std::uint32_t no_reply = 0, bad_time = 0, bad_mode = 0;
   const Faults& fx = sc.faults;
@@ -836,6 +838,7 @@ ScenarioResult run_scenario_rt(const Scenario& sc, Harness& h, cvtctl::Controlle
   const std::int64_t w0 = wall.now_ns();
   ScenarioResult res;
   res.name = std::string(sc.name) + ".realtime";
+  res.what = std::string(sc.what) + " (real time)";
   std::vector<Sample> trace;
   h.expect_shift(true);
   bool answered = h.request(cvt::can::SimRequest::Reset, 0, sc.scene);
@@ -955,6 +958,8 @@ bool write_junit(const std::string& path, const std::vector<ScenarioResult>& res
     }
     std::fprintf(f, "  <testsuite name=\"sil.%s\" tests=\"%zu\" failures=\"%d\" skipped=\"%d\" time=\"%.3f\">\n",
                  r.name.c_str(), r.checks.size(), fails, skips, r.wall_s);
+    std::fprintf(f, "    <properties><property name=\"description\" value=\"%s\"/></properties>\n",
+                 xml_escape(r.what).c_str());
     for (const auto& c : r.checks) {
       std::fprintf(f, "    <testcase classname=\"sil.%s\" name=\"%s\" time=\"0\">\n", r.name.c_str(), c.name.c_str());
       if (!c.judged) std::fprintf(f, "      <skipped message=\"%s\"/>\n", xml_escape(c.detail).c_str());

@@ -19,6 +19,11 @@ def run(*args):
     return subprocess.run([CLI, *args], capture_output=True, text=True, timeout=600)
 
 
+def significant(text):
+    """The significant digits of a decimal number's text."""
+    return text.lower().split("e")[0].replace("-", "").replace(".", "").strip("0")
+
+
 def write(d, name, text):
     path = os.path.join(d, name)
     with open(path, "w") as f:
@@ -60,6 +65,59 @@ class Run(unittest.TestCase):
         # The axial force follows the 4 kN command.
         self.assertAlmostEqual(j["final"]["F_ax_N"], 4000.0, delta=1.0)
 
+    def test_csv_numbers_read_back_to_the_run_doubles(self):
+        # Every number in the CSV is the shortest text of its double
+        # (docs/cli.md#csv-numbers): the last row, parsed, equals bit for bit
+        # what the JSON summary (an independent formatter) reports for the
+        # final frame, and the energy columns close the balance exactly as
+        # the summary's do.
+        with tempfile.TemporaryDirectory() as d:
+            # The ratio-shift example (wedging: every output moves) with every log.
+            with open(os.path.join(SCENES, "ratio-shift.toml")) as f:
+                text = f.read().replace('t_end_s = 5.0', 't_end_s = 1.5')
+            text = "\n".join('log = ["torques", "friction", "ratios", "energy", "states"]' if l.startswith("log =")
+                             else l for l in text.splitlines())
+            self.assertIn("states", text)
+            scene = write(d, "all-logs.toml", text)
+            path = os.path.join(d, "out.csv")
+            r = run("run", "--scene", scene, "--csv", path, "--json")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            j = json.loads(r.stdout)
+            with open(path) as f:
+                rows = list(csv.DictReader(f))
+        self.assertEqual(len(rows), 1 + 1500)
+        last = rows[-1]
+        for col, key in (("omega1", "omega1_rad_s"), ("omega2", "omega2_rad_s"), ("F_ax", "F_ax_N"),
+                         ("slip", "slip"), ("torque_transmitted", "torque_transmitted_Nm")):
+            self.assertEqual(float(last[col]), j["final"][key], col)
+        for col, key in (("E_stored", "stored_final_J"), ("W_in", "input_J"), ("W_load", "load_J"),
+                         ("W_friction", "friction_loss_J"), ("E_residual", "residual_J")):
+            self.assertEqual(float(last[col]), j["energy"][key], col)
+        for row in rows:
+            for col, text in row.items():
+                if col == "fault":
+                    self.assertEqual(text, "none")
+                    continue
+                v = float(text)
+                # Shortest round-trip: as many significant digits as Python's
+                # repr() (itself the shortest text that reads back) needs.
+                self.assertEqual(significant(text), significant(repr(v)), (col, text))
+        # Time stamps are the frames' own: frame i at i * 1 ms to the last bit.
+        self.assertEqual(float(rows[1000]["t"]), 1000 * 1e-3)
+
+    def test_summary_separates_plant_and_output_cost(self):
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "out.csv")
+            with_csv = json.loads(run("run", "--scene", "seed-case1", "--t-end", "2", "--csv", path, "--json").stdout)
+            text = run("run", "--scene", "seed-case1", "--t-end", "2", "--csv", path).stdout
+        bare = json.loads(run("run", "--scene", "seed-case1", "--t-end", "2", "--json").stdout)
+        self.assertEqual(bare["output_ns_per_frame"], 0)
+        self.assertEqual(bare["plant_ns_per_frame"], bare["ns_per_frame"])
+        self.assertGreater(with_csv["output_ns_per_frame"], 0)
+        self.assertAlmostEqual(with_csv["plant_ns_per_frame"] + with_csv["output_ns_per_frame"],
+                               with_csv["ns_per_frame"], delta=1e-6 * with_csv["ns_per_frame"])
+        self.assertRegex(text, r"plant \d+ ns/frame, CSV output \d+ ns/frame")
+
     def test_every_builtin_runs_without_fault(self):
         for name in BUILTIN:
             r = run("run", "--scene", name, "--t-end", "3", "--json")
@@ -82,6 +140,31 @@ class Run(unittest.TestCase):
             r = run("run", "--scene", os.path.join(SCENES, name), "--t-end", "2", "--json")
             self.assertEqual(r.returncode, 0, name + r.stderr)
 
+
+    def test_without_energy_ledger(self):
+        # The scene's choice (docs/rom.md#watchdog): same trajectory, no
+        # energy object and no energy columns; the default log drops them.
+        with tempfile.TemporaryDirectory() as d:
+            p = write(d, "s.toml", 'base = "seed-case1"\nt_end_s = 1.0\nenergy_ledger = false\n')
+            out_off, out_on = os.path.join(d, "off.csv"), os.path.join(d, "on.csv")
+            r = run("run", "--scene", p, "--csv", out_off, "--json")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            j = json.loads(r.stdout)
+            self.assertFalse(j["energy_ledger"])
+            self.assertNotIn("energy", j)
+            self.assertEqual(j["fault"], "none")
+            r = run("run", "--scene", "seed-case1", "--t-end", "1", "--csv", out_on, "--json")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.assertTrue(json.loads(r.stdout)["energy_ledger"])
+            with open(out_off) as f:
+                off = list(csv.reader(f))
+            with open(out_on) as f:
+                on = list(csv.reader(f))
+        self.assertNotIn("E_residual", off[0])
+        self.assertIn("E_residual", on[0])
+        self.assertEqual(len(off), len(on))
+        for a, b in zip(off[1:], on[1:]):
+            self.assertEqual(a[:5], b[:5])
 
     def test_wedging_scene_shifts_the_ratio(self):
         with tempfile.TemporaryDirectory() as d:
@@ -211,6 +294,13 @@ class BadInput(unittest.TestCase):
             self.assert_usage(run("run", "--scene", p), p + ":1:", "features", "warp_drive")
             p = write(d, "k.toml", 'base = "tip-in"\n[inputs]\ntau_in = { kind = "square", value = 1 }\n')
             self.assert_usage(run("run", "--scene", p), p + ":3:", "kind")
+
+    def test_energy_ledger_key(self):
+        with tempfile.TemporaryDirectory() as d:
+            p = write(d, "b.toml", 'base = "seed-case1"\nenergy_ledger = "off"\n')
+            self.assert_usage(run("run", "--scene", p), p + ":2:", "energy_ledger", "true or false")
+            p = write(d, "e.toml", 'base = "seed-case1"\nenergy_ledger = false\nlog = ["torques", "energy"]\n')
+            self.assert_usage(run("run", "--scene", p), "log", "energy_ledger")
 
     def test_wedging_needs_axial_and_floating_point(self):
         shift = os.path.join(SCENES, "ratio-shift.toml")

@@ -266,6 +266,9 @@ TEST_CASE("ROM structured linear solve equals the dense LU step for every featur
     check_structured_step<f::road_load>(p, x0, m);
     check_structured_step<f::polygon>(p, x0, m);
     check_structured_step<f::basic>(p, x0, m);
+    // Wedging: the 6x6 core with the bolt and radial velocities.
+    check_structured_step<f::axial | f::wedging>(p, x0, m);
+    check_structured_step<f::all>(p, x0, m);
     p.hold_driver_speed = true;  // a held pulley: identity row and column
     check_structured_step<f::axial | f::road_load>(p, x0, m);
     p.hold_driver_speed = false;

@@ -188,3 +188,50 @@ TEST_CASE("slope floor: fixed point starts seed case 2 from rest at one step per
   CHECK(r.first == cvt::RomFault::none);
   CHECK(r.second == doctest::Approx(case2_from_rest<double, f::axial>(true, 20, 2.0).second).epsilon(1e-3));
 }
+
+namespace {
+
+// Without the energy ledger (RomSimConfig::energy_ledger, docs/rom.md#cost)
+// a frame integrates the same trajectory bit for bit, the ledger stays at its
+// reset value, and the essential watchdog checks still latch their faults.
+template <class T, std::uint32_t F>
+void check_ledger_off(const char* scene) {
+  const cvt::Scene& s = *cvt::find_builtin_scene(scene);
+  cvt::RomSimConfig on = cvt::sim_config_of(s);
+  cvt::RomSimConfig off = on;
+  off.energy_ledger = false;
+  cvt::RomSimulator<T, F> a(s.params, on), b(s.params, off);
+  a.reset(s.initial, cvt::scene_inputs_at<T>(s, 0.0));
+  b.reset(s.initial, cvt::scene_inputs_at<T>(s, 0.0));
+  bool all_same = true;
+  for (int i = 0; i < 1500; ++i) {
+    const cvt::RomInputs<T> u = cvt::scene_inputs_at<T>(s, i * s.frame_s);
+    REQUIRE(a.step_frame(u) == cvt::RomFault::none);
+    REQUIRE(b.step_frame(u) == cvt::RomFault::none);
+    for (int k = 0; k < a.state().size(); ++k) all_same = all_same && same_bits(a.state()(k), b.state()(k));
+  }
+  CHECK(all_same);
+  // The ledger with it booked work; without it nothing was booked.
+  CHECK(a.energy().input_J != decltype(a.energy().input_J)(0));
+  CHECK(b.energy().input_J == decltype(b.energy().input_J)(0));
+  CHECK(b.energy().stored_J == decltype(b.energy().stored_J)(0));
+  // Essential checks: a non-finite input, and a pulley pushed past the speed limit.
+  if constexpr (std::is_floating_point_v<T>) {
+    cvt::RomSimulator<T, F> c = b;
+    cvt::RomInputs<T> bad = cvt::scene_inputs_at<T>(s, 0.0);
+    bad.tau_in_Nm = T(NAN);
+    CHECK(c.step_frame(bad) == cvt::RomFault::input_non_finite);
+  }
+  cvt::RomSimulator<T, F> d = b;
+  d.mutable_state()(0) = T(s.params.speed_limit_rad_s * 1.01);
+  CHECK(d.step_frame(cvt::scene_inputs_at<T>(s, 1.5)) == cvt::RomFault::speed_out_of_range);
+}
+
+}  // namespace
+
+TEST_CASE("energy ledger off: same trajectory, no booking, essential checks kept") {
+  check_ledger_off<double, f::axial>("seed-case1");
+  check_ledger_off<float, f::axial>("seed-case1");
+  check_ledger_off<cvt::q16_16, f::axial>("seed-case1");
+  check_ledger_off<double, f::axial | f::road_load | f::wedging>("ratio-control");
+}

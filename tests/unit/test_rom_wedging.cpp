@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <string>
 
 #include "cvtplant/plant/rom_sim.hpp"
@@ -170,7 +171,78 @@ TEST_CASE("wedging: without radial motion the plant is the axial plant (tangenti
   CHECK(std::fabs(d(L::kRhoDot)) * p.radial_mass_kg < 1e-5 * radial_push_N);
 }
 
-TEST_CASE("wedging: dual-number Jacobian matches central differences") {
+namespace {
+
+// The analytic Jacobian of a wedging plant (docs/rom.md#wedging-jacobian)
+// against the dual-number derivative of its right-hand side at x: a force
+// law changed in derivative() without its partials fails here.
+template <std::uint32_t F>
+void check_wedge_jacobian_against_duals(const cvt::RomParams& p, const cvt::RomInitial& x0, double rhod_m_s,
+                                        double delta_extra, bool stick = false) {
+  using R = cvt::CvtRom<double, F>;
+  using LL = cvt::RomLayout<F>;
+  R rom(p);
+  rom.inputs.tau_in_Nm = 80.0;
+  rom.inputs.tau_load_Nm = 40.0;
+  rom.inputs.clamp_N = 3300.0;
+  typename R::State x = rom.initial_state(x0);
+  x(LL::kRhoDot) = rhod_m_s;
+  x(LL::kDeltaDot) = 0.001;
+  x(LL::kDelta) += delta_extra;
+  // Stick: the chain frame at the driver's surface speed, lumps at rest in it.
+  if (stick) x(LL::kW2) = rom.driver_radius(x) * x(LL::kW1) / rom.pitch_radius2(x);
+  typename R::Jacobian Ja, Jd;
+  rom.jacobian(x, Ja);
+  cvt::jacobian_by_duals(rom, x, Jd);
+  const double scale = Jd.cwiseAbs().maxCoeff();
+  for (int i = 0; i < R::kStates; ++i)
+    for (int j = 0; j < R::kStates; ++j) {
+      CAPTURE(i);
+      CAPTURE(j);
+      // Exact derivatives of the same expressions: only rounding differs.
+      CHECK(Ja(i, j) == doctest::Approx(Jd(i, j)).epsilon(1e-9).scale(1e-12 * scale));
+    }
+}
+
+}  // namespace
+
+TEST_CASE("wedging: analytic Jacobian equals the dual-number Jacobian for every wedging feature set") {
+  for (const auto& fr : {cvt::friction_presets::table2_case1<double>(), cvt::friction_presets::table2_case2<double>()}) {
+    CAPTURE(static_cast<int>(fr.law));
+    cvt::RomParams p;
+    p.friction = fr;
+    cvt::RomInitial x0;
+    x0.omega1_rad_s = 150.0;
+    x0.omega2_rad_s = 99.95;
+    x0.x1_m = 0.01;
+    x0.x2_m = 0.012;
+    x0.xd1_m_s = 0.003;
+    x0.xd2_m_s = -0.002;
+    x0.radius_offset_m = 0.004;
+    x0.phase_rad = 0.05;
+    check_wedge_jacobian_against_duals<kWedge>(p, x0, -0.02, 0.0);
+    check_wedge_jacobian_against_duals<kWedgeRoad>(p, x0, -0.02, 0.0);
+    check_wedge_jacobian_against_duals<kWedge | f::deformation>(p, x0, 0.03, 0.0);
+    check_wedge_jacobian_against_duals<kWedge | f::polygon>(p, x0, -0.02, 0.0);
+    check_wedge_jacobian_against_duals<f::all>(p, x0, 0.01, 0.0);
+    // On the hub stop, and with the bolt unloaded (F_ax = 0).
+    cvt::RomInitial on_stop = x0;
+    on_stop.radius_offset_m = p.radial_travel_m + 0.002;
+    check_wedge_jacobian_against_duals<kWedgeRoad>(p, on_stop, 0.0, 0.0);
+    check_wedge_jacobian_against_duals<kWedgeRoad>(p, x0, -0.02, -1.0);
+    // Near stick: lump slip of 1e-5 m/s and no radial motion.
+    cvt::RomInitial stick = x0;
+    stick.xd1_m_s = 1e-5;
+    stick.xd2_m_s = -1e-5;
+    check_wedge_jacobian_against_duals<kWedgeRoad>(p, stick, 0.0, 0.0, true);
+    // Held pulleys: zero rows, like the right-hand side's.
+    p.hold_driver_speed = true;
+    p.hold_driven_speed = true;
+    check_wedge_jacobian_against_duals<kWedgeRoad>(p, x0, -0.02, 0.0);
+  }
+}
+
+TEST_CASE("wedging: analytic Jacobian matches central differences") {
   for (const auto& fr : {cvt::friction_presets::table2_case1<double>(), cvt::friction_presets::table2_case2<double>()}) {
     cvt::RomParams p;
     p.friction = fr;
@@ -356,4 +428,38 @@ TEST_CASE("wedging: scene validation") {
   t = s;
   t.params.radial_mass_kg = std::nan("");
   CHECK(field(t) == "radial_mass_kg");
+}
+
+TEST_CASE_TEMPLATE("wedging: the right-hand side from the Jacobian's contact is derivative() bit for bit", T, double,
+                   float) {
+  using R = cvt::CvtRom<T, kWedgeRoad>;
+  using LL = cvt::RomLayout<kWedgeRoad>;
+  for (const auto& fr : {cvt::friction_presets::table2_case1<double>(), cvt::friction_presets::table2_case2<double>()}) {
+    cvt::RomParams p;
+    p.friction = fr;
+    R rom(p);
+    rom.inputs.tau_in_Nm = T(80.0);
+    rom.inputs.tau_load_Nm = T(40.0);
+    rom.inputs.clamp_N = T(3300.0);
+    cvt::RomInitial x0;
+    x0.omega1_rad_s = 150.0;
+    x0.omega2_rad_s = 99.95;
+    x0.xd1_m_s = 0.003;
+    x0.radius_offset_m = 0.004;
+    for (const double rhod : {-0.02, 0.0, 1e-7}) {
+      typename R::State x = rom.initial_state(x0);
+      x(LL::kRhoDot) = T(rhod);
+      typename R::State f1, f2;
+      typename R::Jacobian J1, J2;
+      rom.derivative(x, f1);
+      rom.jacobian(x, J1);
+      rom.jacobian_and_derivative(x, J2, f2);
+      bool same = true;
+      for (int i = 0; i < R::kStates; ++i) same = same && std::memcmp(&f1(i), &f2(i), sizeof(T)) == 0;
+      for (int i = 0; i < R::kStates * R::kStates; ++i)
+        same = same && std::memcmp(J1.data() + i, J2.data() + i, sizeof(T)) == 0;
+      CAPTURE(rhod);
+      CHECK(same);
+    }
+  }
 }

@@ -11,6 +11,7 @@
 #include "commands.hpp"
 #include "cvtplant/analysis/classify.hpp"
 #include "cvtplant/analysis/csv.hpp"
+#include "cvtplant/analysis/csv_writer.hpp"
 #include "cvtplant/analysis/embedding.hpp"
 #include "cvtplant/analysis/errors.hpp"
 #include "cvtplant/analysis/figures.hpp"
@@ -24,9 +25,11 @@
 #include "cvtplant/analysis/test01.hpp"
 #include "io_util.hpp"
 #include "options.hpp"
+#include "progress.hpp"
 #include "model_resolve.hpp"
 #include "registry.hpp"
 #include "scene_file.hpp"
+#include "cvtplant/scene/builtin_scenes.hpp"
 
 namespace {
 
@@ -335,7 +338,10 @@ cvtcli::Action register_analyze(CLI::App& app) {
                          RqaOptions ro = *o;
                          ro.theiler = w;
                          const Embedding e = delay_embed(x, m, tau);
+                         cvtcli::Progress progress(is_png ? "recurrence" : "rqa", static_cast<double>(e.n), "rows");
+                         ro.progress = [&](double done, double) { progress.update(done); };
                          const RqaResult r = rqa(e, ro);
+                         progress.finish();
                          json j = rqa_json(r, m, tau, ro);
                          if (is_png) {
                            write_recurrence_png(e, r.eps, -1, *path, *pixels);
@@ -445,16 +451,19 @@ cvtcli::Action register_analyze(CLI::App& app) {
                        if (!has_model(a->scene)) inputs.push_back(a->scene);
                        std::FILE* f = cvtcli::open_output(a->out, "--out", inputs);
                        const auto rows = s.trajectory(p, x0, dt, a->t_transient, a->t_end, a->sample_dt);
-                       std::fprintf(f, "t");
-                       for (const auto& n : s.state_names) std::fprintf(f, ",%s", n.c_str());
-                       std::fprintf(f, "\n");
-                       const std::size_t n = rows.size() / s.dim;
-                       const double step = s.is_map ? 1.0 : std::max(1L, std::lround(a->sample_dt / dt)) * dt;
-                       for (std::size_t i = 0; i < n; ++i) {
-                         std::fprintf(f, "%.10g", a->t_transient + (i + 1) * step);
-                         for (int k = 0; k < s.dim; ++k) std::fprintf(f, ",%.12g", rows[i * s.dim + k]);
-                         std::fprintf(f, "\n");
-                         if (!cvtcli::output_ok(f)) break;  // reported by close_output
+                       {
+                         CsvWriter w(f);
+                         w.text("t");
+                         for (const auto& n : s.state_names) w.text(n);
+                         w.end_row();
+                         const std::size_t n = rows.size() / s.dim;
+                         const double step = s.is_map ? 1.0 : std::max(1L, std::lround(a->sample_dt / dt)) * dt;
+                         for (std::size_t i = 0; i < n; ++i) {
+                           w.num(a->t_transient + static_cast<double>(i + 1) * step);
+                           for (int k = 0; k < s.dim; ++k) w.num(rows[i * s.dim + k]);
+                           w.end_row();
+                           if ((i & 1023) == 0 && !cvtcli::output_ok(f)) break;  // reported by close_output
+                         }
                        }
                        cvtcli::close_output(f);
                        return 0;
@@ -533,7 +542,10 @@ cvtcli::Action register_analyze(CLI::App& app) {
                        std::vector<std::string> inputs;
                        if (!has_model(a->scene)) inputs.push_back(a->scene);
                        std::FILE* f = cvtcli::open_output(a->out, "--out", inputs);
-                       const auto pts = run_sweep(sp, static_cast<int>(si), static_cast<int>(sn), a->jobs);
+                       cvtcli::Progress progress("sweep " + s.name, points, "points");
+                       const auto pts = run_sweep(sp, static_cast<int>(si), static_cast<int>(sn), a->jobs,
+                                                  [&](long done, long) { progress.update(static_cast<double>(done)); });
+                       progress.finish();
                        write_sweep_csv(f, sp, s.dim, pts);
                        cvtcli::close_output(f);
                        long failed = 0;
@@ -595,7 +607,20 @@ cvtcli::Action register_analyze(CLI::App& app) {
                          auto f = series_figures(x, a->dt, a->column, *dir, a->tau, a->m);
                          files.insert(files.end(), f.begin(), f.end());
                        }
-                       if (!scene->empty()) {
+                       const bool plant_scene =
+                           !scene->empty() && (cvt::find_builtin_scene(scene->c_str()) != nullptr || !has_model(*scene));
+                       if (plant_scene) {
+                         // A plant scene (built-in or a file): the frames `run` computes.
+                         const auto loaded = cvtcli::resolve_scene(*scene);
+                         const cvt::Scene& sc = loaded->scene;
+                         const double frames = *t_end / sc.frame_s;
+                         cvtcli::require_steps(frames * sc.substeps, *caps,
+                                               cvtcli::fmt_count(frames) + " frames x " + std::to_string(sc.substeps) +
+                                                   " substeps");
+                         cvtcli::require_memory(frames * 8.0 * 16, *caps, cvtcli::fmt_count(frames) + " frames of 15 signals");
+                         auto f = rom_scene_figures(sc, loaded->name, *t_end, *dir);
+                         files.insert(files.end(), f.begin(), f.end());
+                       } else if (!scene->empty()) {
                          const auto model = cvtcli::resolve_model(*scene);
                          const Model& s = *model;
                          const double steps = s.is_map ? *t_end : *t_end / s.defaults.dt;
@@ -660,7 +685,12 @@ cvtcli::Action register_analyze(CLI::App& app) {
                                                 cvtcli::fmt_count(frames) + " samples of " +
                                                     std::to_string(names.size()) + " signal(s) and their analysis");
                        }
+                       // One bar: the plant run counts as one stage, then each signal's five.
+                       const double stages = 1.0 + 5.0 * static_cast<double>(names.size());
+                       cvtcli::Progress progress("seed-section4 " + scene->name, stages, "stages");
+                       progress.update(0);
                        const RomSeries run = rom_scene_series(scene->scene, scene->name, names, a->t_end);
+                       progress.update(1);
                        ensure_dir(a->out_dir);
                        if (run.fault != "none")
                          throw cvtcli::RunError{"the plant faulted (" + run.fault + ") in scene " + a->scene};
@@ -680,11 +710,15 @@ cvtcli::Action register_analyze(CLI::App& app) {
                          out["seed_claim"] = "chaotic driver axial force (seed Figs. 18 and 21)";
                        if (a->scene == "seed-case2")
                          out["seed_claim"] = "mildly chaotic driver axial force (seed Figs. 19, 20 and 22)";
+                       double stages_before = 1;
                        for (const auto& n : names) {
+                         so.on_stage = [&](int done, int) { progress.update(stages_before + done); };
                          const Section4Result r =
                              section4_pipeline(run.signal.at(n), so, a->scene + " " + n, a->out_dir + "/" + n);
                          out["signals"].push_back(section4_json(r));
+                         stages_before += 5;
                        }
+                       progress.finish();
                        const std::string summary = a->out_dir + "/summary.json";
                        {
                          std::FILE* f = cvtcli::open_output(summary, "--out-dir");

@@ -271,7 +271,7 @@ Action register_calibrate(CLI::App& app) {
     const double cost0 = f0.squaredNorm();
 
     Functor fn(&pb, n, m);
-    Progress progress("calibrate: plant runs", o.max_evals);
+    Progress progress("calibrate", o.max_evals, "plant runs");
     fn.tick = [&]() { progress.update(static_cast<double>(pb.evals)); };
     Eigen::NumericalDiff<Functor> nd(fn, 1e-6);
     Eigen::LevenbergMarquardt<Eigen::NumericalDiff<Functor>> lm(nd);

@@ -10,6 +10,7 @@
 #include "cvtplant/analysis/systems.hpp"
 #include "io_util.hpp"
 #include "options.hpp"
+#include "progress.hpp"
 #include "model_resolve.hpp"
 #include "registry.hpp"
 
@@ -193,6 +194,12 @@ cvtcli::Action register_lyapunov(CLI::App& app) {
                                      : std::string("(--t-transient + --t-warmup + --t-end) / --dt") +
                                            (runs > 1 ? ", three times with --dt-check" : ""));
       o.max_steps = a->caps.max_steps;
+      // One bar over all runs (the --dt-check run at dt/2 counts twice).
+      cvtcli::Progress progress("lyapunov " + s.name, 100.0 * runs, "");
+      double run_base = 0, run_weight = 100;
+      o.progress = [&](double done, double total) {
+        progress.update(run_base + run_weight * done / std::max(1.0, total));
+      };
       SpectrumResult r;
       try {
         r = s.spectrum(p, x0, o);
@@ -219,6 +226,8 @@ cvtcli::Action register_lyapunov(CLI::App& app) {
         BenettinOptions o2 = o;
         o2.dt = r.dt / 2;
         o2.t_renorm = r.t_renorm;
+        run_base = 100;
+        run_weight = 200;
         SpectrumResult r2;
         try {
           r2 = s.spectrum(p, x0, o2);
@@ -235,6 +244,7 @@ cvtcli::Action register_lyapunov(CLI::App& app) {
         }
         j["dt_check"] = {{"dt_half", o2.dt}, {"exponents_dt_half", r2.exponents}, {"difference", diff}, {"max_abs_difference", worst}};
       }
+      progress.finish();
       if (a->json) {
         cvtcli::print_json(j);
         return 0;

@@ -14,6 +14,7 @@
 #include "commands.hpp"
 #include "io_util.hpp"
 #include "options.hpp"
+#include "progress.hpp"
 #include "registry.hpp"
 #include "scene_file.hpp"
 #include "scene_simulator.hpp"
@@ -34,6 +35,9 @@ struct Trace {
 struct Collector {
   const cvt::Scene& scene;
   cvt::RomSimConfig cfg;
+  // The command's bar, in substeps: this run's start and its substeps per frame.
+  cvtcli::Progress* progress = nullptr;
+  double progress_base = 0;
 
   template <class T>
   Trace operator()(cvt::IRomSimulator<T>& sim_run) {
@@ -46,6 +50,8 @@ struct Collector {
     const int kV1 = cvt::rom_state_index(sim_run.features()).xd1;
     auto on_frame = [&](long i, double, const cvt::IRomSimulator<T>& sim) {
       if (sim.fault() != cvt::RomFault::none) return false;
+      if (progress != nullptr && (i & 255) == 0)
+        progress->update(progress_base + static_cast<double>(i) * cfg.substeps);
       const auto o = sim.outputs();
       tr.w1.push_back(cvt::to_double(o.omega1_rad_s));
       tr.w2.push_back(cvt::to_double(o.omega2_rad_s));
@@ -67,8 +73,11 @@ struct Collector {
 
 // The trace of `s` in scalar k with the settings c; a plant the scalar type
 // does not have is refused (exit 2), never run with fewer features.
-Trace collect(const cvt::Scene& s, cvt::ScalarKind k, const cvt::RomSimConfig& c) {
-  return cvtcli::with_scene_simulator(s, k, c, Collector{s, c},
+Trace collect(const cvt::Scene& s, cvt::ScalarKind k, const cvt::RomSimConfig& c, cvtcli::Progress* progress,
+              double& progress_base) {
+  const double base = progress_base;
+  progress_base += static_cast<double>(cvt::scene_frames(s)) * c.substeps;
+  return cvtcli::with_scene_simulator(s, k, c, Collector{s, c, progress, base},
                                       std::string("--scalar ") + cvt::scalar_kind_name(k) + ": ");
 }
 
@@ -153,7 +162,9 @@ cvtcli::Action register_rom_accuracy(CLI::App& app) {
     rc.method = cvt::Method::ros2;
     rc.substeps = opt->ref_substeps;
     rc.watchdog_energy = false;
-    const Trace ref = collect(s, cvt::ScalarKind::f64, rc);
+    cvtcli::Progress progress("rom-accuracy " + std::string(s.name), frames * substeps, "");
+    double done_substeps = 0;
+    const Trace ref = collect(s, cvt::ScalarKind::f64, rc, &progress, done_substeps);
     if (ref.fault != cvt::RomFault::none)
       throw cvtcli::RunError{std::string("the reference run faulted: ") + cvt::rom_fault_name(ref.fault)};
 
@@ -165,7 +176,7 @@ cvtcli::Action register_rom_accuracy(CLI::App& app) {
       cvt::RomSimConfig cc = cvt::sim_config_of(s);
       cc.method = c.m;
       cc.substeps = c.substeps;
-      const Trace tr = collect(s, sk, cc);
+      const Trace tr = collect(s, sk, cc, &progress, done_substeps);
       const double e1 = rel_rms(tr.w1, ref.w1), e2 = rel_rms(tr.w2, ref.w2), ef = rel_rms(tr.fax, ref.fax),
                    ex = rel_rms(tr.xd1, ref.xd1);
       const double ns = 1e9 * tr.wall_s / std::max<long>(1, tr.frames);
@@ -180,6 +191,7 @@ cvtcli::Action register_rom_accuracy(CLI::App& app) {
                       {"energy_residual_relative", tr.residual_rel},
                       {"ns_per_frame", ns},
                       {"fault", cvt::rom_fault_name(tr.fault)}});
+      progress.finish();  // the row goes where the bar was; the next update redraws it below
       if (!opt->json)
         std::printf("%-24s %5d %-8s %11.3e %11.3e %11.3e %11.3e %11.3e %10.0f %s\n", cvt::method_name(c.m), c.substeps,
                     opt->scalar.c_str(), e1, e2, ef, ex, tr.residual_rel, ns, cvt::rom_fault_name(tr.fault));

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
 
 namespace cvtcli {
 
@@ -19,37 +21,51 @@ std::string seconds(double s) {
 
 }  // namespace
 
-Progress::Progress(std::string label, double total, std::FILE* out)
-    : label_(std::move(label)), total_(total), out_(out), enabled_(isatty(fileno(out)) == 1 && total > 0),
-      start_(clock::now()), last_(start_) {}
+bool Progress::wanted(std::FILE* out) {
+  const char* ci = std::getenv("CI");
+  if (ci != nullptr && *ci != '\0' && std::strcmp(ci, "0") != 0) return false;
+  return isatty(fileno(out)) == 1;
+}
+
+Progress::Progress(std::string label, double total, std::string unit, std::FILE* out)
+    : label_(std::move(label)), unit_(std::move(unit)), total_(total), out_(out),
+      enabled_(total > 0 && wanted(out)), start_(clock::now()), last_(start_) {}
 
 Progress::~Progress() { finish(); }
 
-std::string Progress::format(const std::string& label, double done, double total, double wall_s, int width) {
+std::string Progress::format(const std::string& label, double done, double total, double wall_s,
+                             const std::string& unit, int width) {
   const double f = total > 0 ? std::clamp(done / total, 0.0, 1.0) : 0.0;
   const int filled = static_cast<int>(std::floor(f * width));
   std::string bar(static_cast<std::size_t>(filled), '#');
   bar.append(static_cast<std::size_t>(width - filled), '.');
-  char buf[256];
-  std::snprintf(buf, sizeof buf, "%s [%s] %3.0f%%  t %.3g/%.3g s  wall %s  left %s", label.c_str(), bar.c_str(),
-                100.0 * f, done, total, seconds(wall_s).c_str(),
-                f > 0 ? seconds(wall_s * (1.0 - f) / f).c_str() : "?");
+  char amount[96] = "";
+  if (unit == "s")
+    std::snprintf(amount, sizeof amount, "  t %.3g/%.3g s", done, total);
+  else if (!unit.empty())
+    std::snprintf(amount, sizeof amount, "  %.0f/%.0f %s", done, total, unit.c_str());
+  char buf[320];
+  std::snprintf(buf, sizeof buf, "%s [%s] %3.0f%%%s  wall %s  left %s", label.c_str(), bar.c_str(), 100.0 * f,
+                amount, seconds(wall_s).c_str(), f > 0 ? seconds(wall_s * (1.0 - f) / f).c_str() : "?");
   return buf;
 }
 
 void Progress::update(double done) {
   if (!enabled_) return;
+  const std::lock_guard<std::mutex> lock(mutex_);
   const auto now = clock::now();
   if (drawn_ && now - last_ < std::chrono::milliseconds(100)) return;
   last_ = now;
   drawn_ = true;
   const double wall = std::chrono::duration<double>(now - start_).count();
-  std::fprintf(out_, "\r%s\033[K", format(label_, done, total_, wall).c_str());
+  std::fprintf(out_, "\r%s\033[K", format(label_, done, total_, wall, unit_).c_str());
   std::fflush(out_);
 }
 
 void Progress::finish() {
-  if (!enabled_ || !drawn_) return;
+  if (!enabled_) return;
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (!drawn_) return;
   std::fprintf(out_, "\r\033[K");
   std::fflush(out_);
   drawn_ = false;

@@ -2,19 +2,25 @@
 // The one progress display of the command line (docs/cli.md#progress): on a
 // terminal, a bar on stderr with the fraction done, the simulated time, the
 // wall time and an estimate of the time left, redrawn at most ten times a
-// second and cleared when the job ends. When stderr is not a terminal it
-// prints nothing at all, so piped and redirected runs carry data only.
+// second and cleared when the job ends. When stderr is not a terminal, or
+// the environment variable CI is set to anything but "" or "0" (CI runners
+// may give jobs a pseudo-terminal), it prints nothing at all, so piped and
+// redirected runs carry data only. update() may be called from several
+// threads (sweeps).
 #include <chrono>
 #include <cstdio>
+#include <mutex>
 #include <string>
 
 namespace cvtcli {
 
 class Progress {
  public:
-  // label: what runs (e.g. "mbd case 1"); total: the job's size in the unit
-  // of update() (simulated seconds for a simulation).
-  Progress(std::string label, double total, std::FILE* out = stderr);
+  // label: what runs (e.g. "mbd case 1"); total: the job's size in `unit`,
+  // the unit of update(): "s" for simulated seconds (shown as "t 1.2/10 s"),
+  // a count's name such as "points" (shown as "12/40 points"), or "" for
+  // the percentage alone.
+  Progress(std::string label, double total, std::string unit = "s", std::FILE* out = stderr);
   ~Progress();
   Progress(const Progress&) = delete;
   Progress& operator=(const Progress&) = delete;
@@ -25,14 +31,18 @@ class Progress {
   void finish();
   bool enabled() const { return enabled_; }
 
-  // The line update() would draw (for tests): label, bar, percent, simulated
-  // time, wall time and time left.
-  static std::string format(const std::string& label, double done, double total, double wall_s, int width = 24);
+  // The line update() would draw (for tests): label, bar, percent, the
+  // amount done, wall time and time left.
+  static std::string format(const std::string& label, double done, double total, double wall_s,
+                            const std::string& unit = "s", int width = 24);
+  // Whether a bar may be drawn on `out`: a terminal, and CI unset.
+  static bool wanted(std::FILE* out);
 
  private:
   using clock = std::chrono::steady_clock;
-  std::string label_;
+  std::string label_, unit_;
   double total_;
+  std::mutex mutex_;
   std::FILE* out_;
   bool enabled_;
   bool drawn_ = false;

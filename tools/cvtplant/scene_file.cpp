@@ -249,7 +249,7 @@ class Reader {
   void read(LoadedScene& out) {
     cvt::Scene& s = out.scene;
     check_known(root_, "", {"name", "summary", "base", "features", "t_end_s", "frame_s", "substeps", "integrator",
-                            "scalar", "log", "params", "friction", "initial", "inputs"});
+                            "energy_ledger", "scalar", "log", "params", "friction", "initial", "inputs"});
     const std::string base = text(root_, "", "base", "");
     if (!base.empty()) {
       const cvt::Scene* b = cvt::find_builtin_scene(base.c_str());
@@ -269,6 +269,10 @@ class Reader {
     if (!cvt::parse_method(integ.c_str(), s.method))
       fail_field("integrator", "unknown method " + quoted(integ) +
                                    " (euler, semi-implicit-euler, heun, rk4, linear-implicit-euler, ros2)");
+    s.energy_ledger = boolean(root_, "", "energy_ledger", s.energy_ledger);
+    // Without the ledger the default log leaves out its energy group; a log
+    // that names it is refused by validate_scene.
+    if (!s.energy_ledger && !root_.contains("log")) s.log &= ~cvt::rom_log::energy;
     const std::string scalar = text(root_, "", "scalar", cvt::scalar_kind_name(s.scalar));
     if (scalar == "double") s.scalar = cvt::ScalarKind::f64;
     else if (scalar == "float") s.scalar = cvt::ScalarKind::f32;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cvtplant/analysis/systems.hpp"
+#include "cvtplant/scene/scene.hpp"
 
 namespace cvt::analysis {
 
@@ -22,7 +23,19 @@ std::vector<std::string> series_figures(const std::vector<double>& x, double dt,
 std::string run_time_history_figure(const std::vector<double>& x, double dt, long discard, const std::string& label,
                                     const std::string& out_dir);
 
-// Time histories and phase portraits of a scene (seed Figs. 9/10 style).
+// A plant scene run as `cvtplant run` runs it (double), drawn as stacked
+// panels of one unit each on a shared time axis in s: speeds [rad/s], speed
+// ratio, forces [kN], slip, lump displacements [um] and velocities [mm/s];
+// the title names the scene, scalar type, integrator, substeps and frame
+// step. Plus the phase portraits of the two lumps. Returns the PNG paths
+// (scene_time_history.png, scene_phase_lump1.png, scene_phase_lump2.png).
+std::vector<std::string> rom_scene_figures(const cvt::Scene& scene, const std::string& name, double t_end,
+                                           const std::string& out_dir);
+// "NAME: double, ros2 x 1 substeps, frame 1 ms": the figures' title.
+std::string rom_scene_title(const cvt::Scene& scene, const std::string& name);
+
+// Time histories (one panel per state, shared time axis) and phase portraits
+// of a model of the registry (seed Figs. 9/10 style).
 std::vector<std::string> model_figures(const Model& s, const Params& p, const std::vector<double>& x0, double dt,
                                        double t_end, const std::string& out_dir);
 

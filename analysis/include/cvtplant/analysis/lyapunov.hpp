@@ -13,6 +13,7 @@
 #include <cmath>
 #include <map>
 #include <cstdio>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -33,6 +34,9 @@ struct BenettinOptions {
   // Cap on the steps (maps: iterations) of one run, checked before it
   // starts (LimitError); 0: only the 1e15 that keeps the counts exact.
   double max_steps = 0;
+  // Called every few thousand steps with (steps done, steps in all), e.g. by
+  // a progress bar; empty: not called.
+  std::function<void(double done, double total)> progress;
 };
 
 namespace detail {
@@ -203,9 +207,11 @@ SpectrumResult lyapunov_flow(const Flow& sys, const Eigen::Matrix<double, Flow::
                                " (dt too large for this system?)");
   };
   // Transient: state only.
+  const double all_steps = static_cast<double>(n_trans + n_warm + n_acc);
   for (long s = 0; s < n_trans; ++s) {
     step_rk4(sys, x, h);
     if ((s & 1023) == 0) check(s);
+    if ((s & 4095) == 0 && opt.progress) opt.progress(static_cast<double>(s), all_steps);
   }
   check(n_trans);
   // RK4 (the core's, integrate/explicit_rk.hpp) on the variational system
@@ -233,6 +239,7 @@ SpectrumResult lyapunov_flow(const Flow& sys, const Eigen::Matrix<double, Flow::
       trace_int = 0;  // the trace is integrated over the accumulation only
     }
     step_rk4(aug, z, h);
+    if ((s & 4095) == 0 && opt.progress) opt.progress(static_cast<double>(n_trans + s), all_steps);
     if ((s + 1) % renorm_steps == 0) {
       x = z.template head<N>();
       check(n_trans + s);
@@ -312,9 +319,11 @@ SpectrumResult lyapunov_map(const Map& sys, const Eigen::Matrix<double, Map::kSt
   r.t_warmup = static_cast<double>(n_warm);
   r.t_end = static_cast<double>(n_acc);
   V x = x0, xn;
+  const double all_steps = static_cast<double>(n_trans + n_warm + n_acc);
   for (long s = 0; s < n_trans; ++s) {
     sys.step(x, xn);
     x = xn;
+    if ((s & 4095) == 0 && opt.progress) opt.progress(static_cast<double>(s), all_steps);
   }
   if (!x.allFinite()) throw std::runtime_error("lyapunov: map orbit diverged during the transient");
   M Y = M::Identity(), J;
@@ -323,6 +332,7 @@ SpectrumResult lyapunov_map(const Map& sys, const Eigen::Matrix<double, Map::kSt
   std::vector<std::vector<double>> batch;
   long next_conv = std::max(1L, n_acc / 64);
   for (long s = 0; s < n_warm + n_acc; ++s) {
+    if ((s & 4095) == 0 && opt.progress) opt.progress(static_cast<double>(n_trans + s), all_steps);
     sys.jacobian(x, J);
     sys.step(x, xn);
     x = xn;

@@ -7,6 +7,7 @@
 // once; memory is O(N) (no N x N matrix).
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,9 @@ struct RqaOptions {
   int theiler = 0;          // w: pairs |i-j| <= w excluded
   int lmin = 2;             // minimal diagonal line length (DET, L, ENTR)
   int vmin = 2;             // minimal vertical line length (LAM, TT)
+  // Called every few thousand rows with (rows done, rows), e.g. by a
+  // progress bar; empty: not called.
+  std::function<void(double done, double total)> progress;
 };
 
 struct RqaResult {

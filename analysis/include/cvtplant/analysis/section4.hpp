@@ -3,6 +3,7 @@
 // (docs/analysis.md#seed-section4): transient removed, normalised, delay from
 // AMI, dimension from FNN (and Cao), largest exponent (Rosenstein and Kantz),
 // recurrence plot and RQA, 0-1 test, and the classify verdict, with figures.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,10 @@ struct Section4Options {
   // A series whose std is at most this fraction of its largest magnitude is
   // constant: no delay, dimension or exponent exists (z-scoring divides by 0).
   double constant_rel_std = 1e-9;
+  // Called as each stage ends with (stages done, stages): the time history,
+  // the classification (AMI, FNN, RQA, exponent, 0-1 test), Cao, Kantz and
+  // the figures. Empty: not called.
+  std::function<void(int done, int total)> on_stage;
 };
 
 struct Section4Result {

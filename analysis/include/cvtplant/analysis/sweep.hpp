@@ -5,6 +5,7 @@
 // shard i of N iff k % N == i, so `--shard i/N` jobs can run as a Slurm array
 // or under GNU parallel and be merged afterwards.
 #include <cstdio>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -49,8 +50,11 @@ struct SweepPoint {
 };
 
 // Runs the points of shard `shard_i` of `shard_n` on `jobs` threads
-// (jobs <= 0: hardware concurrency). Results sorted by index.
-std::vector<SweepPoint> run_sweep(const SweepSpec& spec, int shard_i, int shard_n, int jobs);
+// (jobs <= 0: hardware concurrency). Results sorted by index. `on_point`,
+// if set, is called after each point with (points done, points of the
+// shard), from the worker threads.
+std::vector<SweepPoint> run_sweep(const SweepSpec& spec, int shard_i, int shard_n, int jobs,
+                                  const std::function<void(long done, long total)>& on_point = {});
 
 void write_sweep_csv(std::FILE* f, const SweepSpec& spec, int dim, const std::vector<SweepPoint>& pts);
 

@@ -172,6 +172,9 @@ class CvtRom {
     return -(S(c_.a1) + rho * (S(c_.a2 + c_.a2) + rho * S(T(3) * c_.a3)));
   }
 
+  // d kappa / d rho = -(2 a2 + 6 a3 rho).
+  T ratio_slope_derivative(const T& rho) const { return -(T(c_.a2 + c_.a2) + rho * (T(6) * c_.a3)); }
+
   // Effective driver radius r1e: r1, or r1 cos(psi) with chordal action.
   template <class S>
   S driver_radius(const Eigen::Matrix<S, kStates, 1>& x) const {
@@ -227,6 +230,16 @@ class CvtRom {
     return tl;
   }
 
+  // d tau_load / d w2 (docs/rom.md#road-load), zero without road load.
+  T load_torque_slope(const T& w2) const {
+    if constexpr (L::kRoad) {
+      const T th = tanh(w2 * c_.inv_w_eps);
+      return c_.T0 * (T(1) - th * th) * c_.inv_w_eps + c_.cv + (c_.ca + c_.ca) * abs(w2);
+    }
+    (void)w2;
+    return T(0);
+  }
+
   // Friction of both lumps at a state, value and slope (non-wedging plants):
   // evaluated once per state and shared by the right-hand side, the Jacobian
   // and the power terms, since the exponentials and the atan are most of a
@@ -269,13 +282,25 @@ class CvtRom {
   // Analytic Jacobian (docs/rom.md#jacobian). Held pulleys get zero rows AND
   // columns: their speed never changes, so the columns multiply a zero
   // increment, and leaving them out keeps the LU pivots those of seed Eq. 9.
-  // With wedging, dual numbers (docs/rom.md#wedging).
+  // With wedging, the chain rule through the per-lump contact partials
+  // (docs/rom.md#wedging-jacobian).
   void jacobian(const State& x, Jacobian& J) const {
     if constexpr (L::kWedge) {
-      jacobian_by_duals(*this, x, J);
+      jacobian_wedge(x, J);
     } else {
       jacobian(x, contact(x), J, false);
     }
+  }
+
+  // Wedging: the Jacobian and the right-hand side at x from one evaluation
+  // of the contact (the exponentials, atan and square roots of the friction
+  // are most of a right-hand side; docs/rom.md#cost). dxdt is bit for bit
+  // derivative(x, dxdt): the fused friction value equals the separate one.
+  void jacobian_and_derivative(const State& x, Jacobian& J, State& dxdt) const {
+    static_assert(L::kWedge, "plants without wedging share their contact through contact(x)");
+    WedgeContact<T> c;
+    jacobian_wedge(x, J, &c);
+    derivative_wedge_given(x, driver_radius(x), pitch_radius2(x), clamp_force(x), c, dxdt);
   }
 
   // The Jacobian from the friction already evaluated at x. With
@@ -307,23 +332,22 @@ class CvtRom {
 
     // Row of w2dot (also enters the lump rows through -r2 w2dot).
     T rw2[kStates];
+    #pragma GCC unroll 16
     for (int j = 0; j < kStates; ++j) rw2[j] = T(0);
     if (free2) {
-      T dtl = T(0);
-      if constexpr (L::kRoad) {
-        const T th = tanh(w2 * c_.inv_w_eps);
-        dtl = c_.T0 * (T(1) - th * th) * c_.inv_w_eps + c_.cv + (c_.ca + c_.ca) * abs(w2);
-      }
+      const T dtl = load_torque_slope(w2);
       rw2[L::kW2] = per_tau(-dtl * c_.inv_J2);
       rw2[L::kX1] = per_tau(c_.r2 * c_.k1 * c_.inv_J2);
       rw2[L::kV1] = per_tau(c_.r2 * c_.c1 * c_.inv_J2);
       rw2[L::kX2] = per_tau(c_.r2 * c_.k1 * c_.inv_J2);
       rw2[L::kV2] = per_tau(c_.r2 * c_.c1 * c_.inv_J2);
+      #pragma GCC unroll 16
       for (int j = 0; j < kStates; ++j) J(L::kW2, j) = rw2[j];
     }
     // Partials of F_i w.r.t. the states, columns w1, w2, xd_i, delta, psi,
     // per time unit like g_i.
     T dF1[kStates], dF2[kStates];
+    #pragma GCC unroll 16
     for (int j = 0; j < kStates; ++j) dF1[j] = dF2[j] = T(0);
     dF1[L::kW1] = -g1 * r1e;
     dF2[L::kW1] = -g2 * r1e;
@@ -350,6 +374,7 @@ class CvtRom {
     if (!free2) dF1[L::kW2] = dF2[L::kW2] = T(0);
 
     if (free1) {
+      #pragma GCC unroll 16
       for (int j = 0; j < kStates; ++j) J(L::kW1, j) = -r1e * (dF1[j] + dF2[j]) * c_.inv_J1;
       if constexpr (L::kPolygon) {
         const T F1 = lump_friction(c.lump1.phi, N1);
@@ -360,6 +385,7 @@ class CvtRom {
     }
     J(L::kX1, L::kV1) = T(1);
     J(L::kX2, L::kV2) = T(1);
+    #pragma GCC unroll 16
     for (int j = 0; j < kStates; ++j) {
       J(L::kV1, j) = dF1[j] * im - c_.r2 * rw2[j];
       J(L::kV2, j) = dF2[j] * im - c_.r2 * rw2[j];
@@ -382,7 +408,7 @@ class CvtRom {
     if constexpr (L::kPolygon) J(L::kPsi, L::kW1) = per_tau(T(1));
   }
 
-  // docs/rom.md#slope-floor for the dense W of the wedging plants: adds to J
+  // docs/rom.md#slope-floor for the W of the wedging plants: adds to J
   // the part of the floor that acts through the tangential slip speed,
   // dF_i/dv_t,i raised by (floor - phi') F_ax / cos(beta_i) on the rows of w1
   // and xd_i and the columns w1, w2, xd_i. An approximation of the same floor
@@ -495,11 +521,181 @@ class CvtRom {
       const S speed = sqrt(s2);
       q = friction_characteristic(c_.friction, speed) / speed;
     }
-    // seed Eq. 7 solved for N: N (1 + tan(beta) q gr) = F_ax / cos(beta).
-    // 1 + tan(beta) q gr >= 1 - mu_max tan(beta) > 0 (validate_scene).
-    const S N = N0 / (S(T(1)) + tb * q * gr);
+    S N;
+    contact_forces(q, vt, gr, N0, tb, N, F, Fr);
+  }
+
+  // The forces of a lump from q = phi(|v|)/|v| (seed Eq. 7 solved for N):
+  // N (1 + tan(beta) q gr) = F_ax / cos(beta), F = -q vt N, Fr = -q gr N.
+  // 1 + tan(beta) q gr >= 1 - mu_max tan(beta) > 0 (validate_scene).
+  template <class S>
+  void contact_forces(const S& q, const S& vt, const S& gr, const S& N0, const S& tb, S& N, S& F, S& Fr) const {
+    N = N0 / (S(T(1)) + tb * q * gr);
     F = -q * vt * N;
     Fr = -q * gr * N;
+  }
+
+  // lump_contact's forces and their partial derivatives with respect to
+  // (vt, gr, N0) (docs/rom.md#wedging-jacobian).
+  struct LumpPartials {
+    T F{}, Fr{};
+    T dF[3]{}, dFr[3]{};
+  };
+  LumpPartials lump_contact_partials(const T& vt, const T& gr, const T& N0, const T& tb) const {
+    const T s2 = vt * vt + gr * gr;
+    T q(c_.q0), dq_vt(0), dq_gr(0);
+    if (s2 > T(1e-24)) {
+      const T speed = sqrt(s2);
+      const FrictionEval<T> e = friction_characteristic_and_slope(c_.friction, speed);
+      q = e.phi / speed;
+      // dq/ds = (phi'(s) - q) / s and ds/dv = v / s.
+      const T dq_s = (e.slope - q) / speed;
+      dq_vt = dq_s * (vt / speed);
+      dq_gr = dq_s * (gr / speed);
+    }
+    LumpPartials r;
+    T N;
+    contact_forces(q, vt, gr, N0, tb, N, r.F, r.Fr);
+    const T inv_d = T(1) / (T(1) + tb * q * gr);
+    // N = N0 / D with D = 1 + tb q gr.
+    const T dN_vt = -N * tb * gr * dq_vt * inv_d;
+    const T dN_gr = -N * tb * (q + gr * dq_gr) * inv_d;
+    r.dF[0] = -(dq_vt * vt * N + q * N + q * vt * dN_vt);
+    r.dF[1] = -(dq_gr * vt * N + q * vt * dN_gr);
+    r.dF[2] = -q * vt * inv_d;
+    r.dFr[0] = -(dq_vt * gr * N + q * gr * dN_vt);
+    r.dFr[1] = -(dq_gr * gr * N + q * N + q * gr * dN_gr);
+    r.dFr[2] = -q * gr * inv_d;
+    return r;
+  }
+
+  // The Jacobian of derivative_wedge (docs/rom.md#wedging-jacobian): the
+  // chain rule through the radii, the slip speeds, the bolt force and
+  // lump_contact_partials. Held pulleys get zero rows, like the dual-number
+  // Jacobian of the same right-hand side (the test compares the two).
+  void jacobian_wedge(const State& x, Jacobian& J, WedgeContact<T>* contact = nullptr) const {
+    constexpr int N = kStates;
+    J.setZero();
+    const T w1 = x(L::kW1), w2 = x(L::kW2), rho = x(L::kRho), rhod = x(L::kRhoDot);
+    const T r1p = pitch_radius1(x);
+    const T r1e = driver_radius(x);
+    T cpsi(1), spsi(0);
+    if constexpr (L::kPolygon) {
+      cpsi = cos(x(L::kPsi));
+      spsi = sin(x(L::kPsi));
+    }
+    const T r2 = pitch_radius2(x);
+    const T kap = ratio_slope(rho);  // -dr2/drho
+    const T dkap = ratio_slope_derivative(rho);
+    const T v1 = r1e * w1;
+    const T vc = r2 * w2;
+    const T fax = clamp_force(x);
+    // dF_ax/dx: F_ax = K_ax (delta - 2 tan(beta0) rho) while compressed.
+    T dfax[N];
+    #pragma GCC unroll 16
+    for (int j = 0; j < N; ++j) dfax[j] = T(0);
+    if (x(L::kDelta) - c_.two_tan_b0 * rho > T(0)) {
+      dfax[L::kDelta] = c_.K_ax;
+      dfax[L::kRho] = -c_.K_ax * c_.two_tan_b0;
+    }
+    // d r1e/dx and the part of d vt_i/dx both lumps share.
+    T dr1e[N], dvt[N];
+    #pragma GCC unroll 16
+    for (int j = 0; j < N; ++j) dr1e[j] = dvt[j] = T(0);
+    dr1e[L::kRho] = cpsi;
+    if constexpr (L::kPolygon) dr1e[L::kPsi] = -r1p * spsi;
+    #pragma GCC unroll 16
+    for (int j = 0; j < N; ++j) dvt[j] = -dr1e[j] * w1;
+    dvt[L::kW1] = -r1e;
+    dvt[L::kW2] = r2;
+    dvt[L::kRho] += -kap * w2;
+    // Tangential and radial friction of each lump and their gradients.
+    T dF[2][N], dR[2][N];
+    T Fsum(0);
+    const int v_col[2] = {L::kV1, L::kV2};
+    const T inv_cos[2] = {c_.inv_cos1, c_.inv_cos2};
+    const T load[2] = {c_.load1, c_.load2};
+    const T tanb[2] = {c_.tan1, c_.tan2};
+    #pragma GCC unroll 16
+    for (int i = 0; i < 2; ++i) {
+      const T vt = slip_velocity<T>(vc, x(v_col[i]), v1);
+      const LumpPartials P = lump_contact_partials(vt, rhod * inv_cos[i], normal_force(fax, load[i]), tanb[i]);
+      Fsum += P.F;
+      if (contact != nullptr) {
+        (i == 0 ? contact->F1 : contact->F2) = P.F;
+        (i == 0 ? contact->Fr1 : contact->Fr2) = P.Fr;
+      }
+      #pragma GCC unroll 16
+      for (int j = 0; j < N; ++j) {
+        const T dn = load[i] * dfax[j];
+        dF[i][j] = P.dF[0] * dvt[j] + P.dF[2] * dn;
+        dR[i][j] = P.dFr[0] * dvt[j] + P.dFr[2] * dn;
+      }
+      dF[i][v_col[i]] += P.dF[0];
+      dR[i][v_col[i]] += P.dFr[0];
+      dF[i][L::kRhoDot] += P.dF[1] * inv_cos[i];
+      dR[i][L::kRhoDot] += P.dFr[1] * inv_cos[i];
+    }
+    // Driver row: J1 w1' = tau_in - r1e (F1 + F2).
+    if (!c_.hold1)
+      #pragma GCC unroll 16
+      for (int j = 0; j < N; ++j) J(L::kW1, j) = -(r1e * (dF[0][j] + dF[1][j]) + Fsum * dr1e[j]) * c_.inv_J1;
+    // Driven row: J2 w2' = r2 (strand1 + strand2) - tau_load.
+    T dw2[N];
+    #pragma GCC unroll 16
+    for (int j = 0; j < N; ++j) dw2[j] = T(0);
+    T w2dot(0);
+    const T strand1 = strand_force(c_.k1, c_.c1, x(L::kX1), x(L::kV1));
+    const T strand2 = strand_force(c_.k1, c_.c1, x(L::kX2), x(L::kV2));
+    if (!c_.hold2) {
+      w2dot = (strand_torque(r2, strand1, strand2) - load_torque(w2)) * c_.inv_J2;
+      dw2[L::kX1] = dw2[L::kX2] = r2 * c_.k1 * c_.inv_J2;
+      dw2[L::kV1] = dw2[L::kV2] = r2 * c_.c1 * c_.inv_J2;
+      dw2[L::kW2] = -load_torque_slope(w2) * c_.inv_J2;
+      dw2[L::kRho] = -kap * (strand1 + strand2) * c_.inv_J2;
+      #pragma GCC unroll 16
+      for (int j = 0; j < N; ++j) J(L::kW2, j) = dw2[j];
+    }
+    // Chain frame acceleration r2 w2' - kappa rhodot w2.
+    T dca[N];
+    #pragma GCC unroll 16
+    for (int j = 0; j < N; ++j) dca[j] = r2 * dw2[j];
+    dca[L::kRho] += -kap * w2dot - dkap * rhod * w2;
+    dca[L::kRhoDot] += -kap * w2;
+    dca[L::kW2] += -kap * rhod;
+    // Lump rows: m (xd_i' + chain) = F_i - strand_i -+ mid.
+    #pragma GCC unroll 16
+    for (int j = 0; j < N; ++j) {
+      J(L::kV1, j) = dF[0][j] * c_.inv_m - dca[j];
+      J(L::kV2, j) = dF[1][j] * c_.inv_m - dca[j];
+    }
+    J(L::kV1, L::kX1) += -(c_.k1 + c_.k2) * c_.inv_m;
+    J(L::kV1, L::kX2) += c_.k2 * c_.inv_m;
+    J(L::kV1, L::kV1) += -(c_.c1 + c_.c2) * c_.inv_m;
+    J(L::kV1, L::kV2) += c_.c2 * c_.inv_m;
+    J(L::kV2, L::kX1) += c_.k2 * c_.inv_m;
+    J(L::kV2, L::kX2) += -(c_.k1 + c_.k2) * c_.inv_m;
+    J(L::kV2, L::kV1) += c_.c2 * c_.inv_m;
+    J(L::kV2, L::kV2) += -(c_.c1 + c_.c2) * c_.inv_m;
+    J(L::kX1, L::kV1) = T(1);
+    J(L::kX2, L::kV2) = T(1);
+    // Axial rows.
+    J(L::kFh, L::kFh) = -c_.inv_tau_h;
+    J(L::kDelta, L::kDeltaDot) = T(1);
+    #pragma GCC unroll 16
+    for (int j = 0; j < N; ++j) J(L::kDeltaDot, j) = -dfax[j] * c_.inv_ms;
+    J(L::kDeltaDot, L::kFh) += c_.inv_ms;
+    J(L::kDeltaDot, L::kDeltaDot) += -c_.cs * c_.inv_ms;
+    // Radial rows: m_r rho'' = 2 tan(beta0) F_ax + sum Fr_i / cos(beta_i)
+    //   - kappa 2 tan(beta0) F_ax2 - c_r rho' - F_stop.
+    J(L::kRho, L::kRhoDot) = T(1);
+    #pragma GCC unroll 16
+    for (int j = 0; j < N; ++j)
+      J(L::kRhoDot, j) = (c_.two_tan_b0 * dfax[j] + dR[0][j] * c_.inv_cos1 + dR[1][j] * c_.inv_cos2) * c_.inv_mr;
+    const T stop_slope = stop_penetration(rho) != T(0) ? c_.k_stop : T(0);
+    J(L::kRhoDot, L::kRho) += (-dkap * c_.driven_force - stop_slope) * c_.inv_mr;
+    J(L::kRhoDot, L::kRhoDot) += -c_.cr * c_.inv_mr;
+    if constexpr (L::kPolygon) J(L::kPsi, L::kW1) = T(1);
   }
 
   // derivative() with wedging (docs/rom.md#wedging): radii follow rho, the
@@ -514,6 +710,14 @@ class CvtRom {
     const S fax = clamp_force(x);
     const WedgeContact<S> c =
         wedge_contact(slip_velocity<S>(vc, x(L::kV1), v1), slip_velocity<S>(vc, x(L::kV2), v1), rhod, fax);
+    derivative_wedge_given(x, r1e, r2, fax, c, dxdt);
+  }
+
+  // The same from the radii, the axial force and the contact forces at x.
+  template <class S>
+  void derivative_wedge_given(const Eigen::Matrix<S, kStates, 1>& x, const S& r1e, const S& r2, const S& fax,
+                              const WedgeContact<S>& c, Eigen::Matrix<S, kStates, 1>& dxdt) const {
+    const S rhod = x(L::kRhoDot);
     drive_train_rows(x, r1e, r2, c.F1, c.F2, fax, dxdt);
     // m_r rho'' = 2 tan(beta0) F_b + sum F_r,i / cos(beta_i) - kappa(rho) 2 tan(beta0) F_ax2 - c_r rho' - F_stop
     dxdt(L::kRho) = rhod;

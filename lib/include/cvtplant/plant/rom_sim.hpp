@@ -19,11 +19,17 @@ struct RomSimConfig {
   Method method = Method::ros2;
   int substeps = 1;            // integrator steps per frame
   double frame_s = 1e-3;
+  // The energy ledger (docs/rom.md#energy-balance) and with it the energy
+  // check of the watchdog: about a tenth of a frame, the scene's choice
+  // (docs/rom.md#cost). Off, energy() stays at its reset value and only the
+  // essential checks run (non-finite or saturated states, speed limits,
+  // radial travel, step resolution: docs/rom.md#watchdog).
+  bool energy_ledger = true;
   bool watchdog_energy = true;
   double energy_rel_tol = 0.05;  // residual > rel * scale + abs  ->  energy_growth
   double energy_abs_tol_J = 1.0;
   // W of the implicit methods with the friction slope floor
-  // (docs/rom.md#slope-floor; the wedging plants add it to their dense W);
+  // (docs/rom.md#slope-floor; the wedging plants add it to their full J);
   // no effect on the explicit methods.
   bool w_slope_floor = true;
   // Wedging: a frame that starts or ends on a radial end stop, or close
@@ -87,7 +93,7 @@ class RomSimulator {
     plant_.set_driven_clamp_N(driven_N_);
     stop_refined_ = 0;
     ledger_ = EnergyLedger<Acc>{};
-    ledger_.stored0_J = ledger_.stored_J = plant_.stored_energy(x_);
+    if (cfg_.energy_ledger) ledger_.stored0_J = ledger_.stored_J = plant_.stored_energy(x_);
     frames_ = 0;
     refresh_contact();
   }
@@ -139,7 +145,7 @@ class RomSimulator {
       f = integrate(n, h_, h_acc_);
     }
     if (f != RomFault::none) return roll_back(f);
-    ledger_.stored_J = plant_.stored_energy(x_);
+    if (cfg_.energy_ledger) ledger_.stored_J = plant_.stored_energy(x_);
     ++frames_;
     // Pulleys within the model's speed range; with chordal action, a driver
     // slow enough for the step to resolve the link passing (docs/rom.md#polygon).
@@ -148,7 +154,7 @@ class RomSimulator {
     if constexpr (Plant::Layout::kPolygon) {
       if (abs_of(x_(Plant::Layout::kW1)) > resolved_speed_) return roll_back(RomFault::step_unresolved);
     }
-    if (cfg_.watchdog_energy) {
+    if (cfg_.energy_ledger && cfg_.watchdog_energy) {
       const Acc r = ledger_.residual_J();
       if (!(r == r) || r > rel_tol_ * ledger_.scale_J() + abs_tol_) roll_back(RomFault::energy_growth);
     }
@@ -203,20 +209,30 @@ class RomSimulator {
     rom_step(cfg_.method, plant_, x_, h, cfg_.w_slope_floor, &carry_);
   }
 
-  // n substeps of h (plant time units; hacc the same in seconds), each
-  // checked, with the ledger's trapezoid on the power terms at the substep
-  // ends (inputs constant over the frame, docs/rom.md#energy-balance).
+  // One substep of h, checked (non-finite or saturated state, radial travel).
+  // The friction at the new state serves the ledger's power term and the
+  // next substep's Jacobian and right-hand side (docs/rom.md#cost).
+  RomFault substep(const T& h) {
+    advance_substep(h);
+    plant_.wrap(x_);
+    RomFault f = rom_state_fault(x_);
+    if (f == RomFault::none && !plant_.radius_in_range(x_)) f = RomFault::radius_out_of_range;
+    if (f == RomFault::none) refresh_contact();
+    return f;
+  }
+
+  // n substeps of h (plant time units; hacc the same in seconds), with the
+  // ledger's trapezoid on the power terms at the substep ends when the
+  // ledger is on (inputs constant over the frame, docs/rom.md#energy-balance).
   RomFault integrate(int n, const T& h, const Acc& hacc) {
+    if (!cfg_.energy_ledger) {
+      for (int i = 0; i < n; ++i)
+        if (const RomFault f = substep(h); f != RomFault::none) return f;
+      return RomFault::none;
+    }
     RomPower<Acc> p0 = power_now();
     for (int i = 0; i < n; ++i) {
-      advance_substep(h);
-      plant_.wrap(x_);
-      RomFault f = rom_state_fault(x_);
-      if (f == RomFault::none && !plant_.radius_in_range(x_)) f = RomFault::radius_out_of_range;
-      if (f != RomFault::none) return f;
-      // The friction at the new state serves this power term and the next
-      // substep's Jacobian and right-hand side (docs/rom.md#cost).
-      refresh_contact();
+      if (const RomFault f = substep(h); f != RomFault::none) return f;
       const RomPower<Acc> p1 = power_now();
       ledger_.add_trapezoid(p0, p1, hacc * Acc(0.5));
       p0 = p1;
@@ -250,6 +266,11 @@ class RomSimulator {
     driven_work_ = Acc(0);
     const double next = driven_N_ + (driven_cmd_N_ - driven_N_) * driven_lag_;
     if (next == driven_N_) return;
+    if (!cfg_.energy_ledger) {
+      driven_N_ = next;
+      plant_.set_driven_clamp_N(driven_N_);
+      return;
+    }
     const Acc before = plant_.stored_energy(x_);
     driven_N_ = next;
     plant_.set_driven_clamp_N(driven_N_);

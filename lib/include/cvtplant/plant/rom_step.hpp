@@ -6,14 +6,19 @@
 // the order of the arithmetic of the linear solve differs, so results agree
 // with the dense LU to rounding.
 // A dense 9x9 LU is most of a frame on a Cortex-M4F; the elimination leaves
-// a 4x4 LU (the two pulley speeds and the two lump velocities), written out.
+// a 4x4 LU (the two pulley speeds and the two lump velocities), written out,
+// and with wedging a 6x6 one instead of the dense 11x11.
 //
 // Structure used (docs/rom.md#structured-solve), for a = gamma h:
-//   kinematic rows p (x1, x2, psi): J(p, .) has one entry, J(p, c(p)), with
-//     c(x_i) = xd_i and c(psi) = w1, so k_p = f_p + a J(p, c(p)) k_c(p);
-//   axial rows (F_h, delta, deltadot): depend on the axial states only (no
-//     wedging), a 3x3 block solved first by two scalar divisions;
-//   the core rows (w1, w2, xd1, xd2) then form a dense 4x4 system.
+//   kinematic rows p (x1, x2, psi; with wedging also delta, rho): J(p, .)
+//     has one entry, J(p, c(p)), with c(x_i) = xd_i, c(psi) = w1,
+//     c(delta) = deltadot, c(rho) = rhodot, so k_p = f_p + a J(p, c(p)) k_c(p);
+//   axial rows (F_h, delta, deltadot) without wedging: depend on the axial
+//     states only, a 3x3 block solved first by two scalar divisions;
+//     with wedging only the actuator row F_h stands alone (the bolt force
+//     depends on rho, and the contact on delta);
+//   the core rows (w1, w2, xd1, xd2; with wedging also deltadot, rhodot)
+//     then form a dense 4x4 (6x6) system.
 #include <cstdint>
 
 #include "cvtplant/integrate/method.hpp"
@@ -27,27 +32,39 @@ class RomWSolver {
   using Plant = CvtRom<T, F>;
   using L = RomLayout<F>;
   using Vec = typename Plant::State;
-  static constexpr int kCore[4] = {L::kW1, L::kW2, L::kV1, L::kV2};
-  static constexpr int kNumKin = L::kPolygon ? 3 : 2;
-  static constexpr int kKin[3] = {L::kX1, L::kX2, L::kPsi};
-  // Core column (index into kCore) each kinematic state integrates.
-  static constexpr int kKinCore[3] = {2, 3, 0};
+  static constexpr bool kWedge = L::kWedge;
+  // Core states, solved as one dense system: the pulley speeds and lump
+  // velocities, and with wedging the bolt and radial velocities.
+  static constexpr int kM = kWedge ? 6 : 4;
+  static constexpr int kCore[6] = {L::kW1, L::kW2, L::kV1, L::kV2, kWedge ? L::kDeltaDot : 0, kWedge ? L::kRhoDot : 0};
+  // Kinematic states (x1, x2, [delta, rho with wedging], [psi]) and the core
+  // column (index into kCore) each integrates.
+  static constexpr int kNumKin = 2 + (kWedge ? 2 : 0) + (L::kPolygon ? 1 : 0);
+  static constexpr int kKin[5] = {L::kX1, L::kX2, kWedge ? L::kDelta : L::kPsi, kWedge ? L::kRho : 0, L::kPsi};
+  static constexpr int kKinCore[5] = {2, 3, kWedge ? 4 : 0, 5, 0};
 
  public:
   // W = I - a J for the Jacobian J at the step's start.
   void factor(const typename Plant::Jacobian& J, const T& a) {
+    #pragma GCC unroll 8
     for (int p = 0; p < kNumKin; ++p) kin_[p] = a * J(kKin[p], kCore[kKinCore[p]]);
-    for (int r = 0; r < 4; ++r) {
-      for (int c = 0; c < 4; ++c) lu_[r][c] = (r == c ? T(1) : T(0)) - a * J(kCore[r], kCore[c]);
+    #pragma GCC unroll 8
+    for (int r = 0; r < kM; ++r) {
+      #pragma GCC unroll 8
+      for (int c = 0; c < kM; ++c) lu_[r][c] = (r == c ? T(1) : T(0)) - a * J(kCore[r], kCore[c]);
       // Substituting k_p = f_p + kin_p k_c(p) into the core rows.
+      #pragma GCC unroll 8
       for (int p = 0; p < kNumKin; ++p) {
         wcp_[r][p] = -a * J(kCore[r], kKin[p]);
         lu_[r][kKinCore[p]] += wcp_[r][p] * kin_[p];
       }
-      if constexpr (L::kAxial) wca_[r] = -a * J(kCore[r], L::kDelta);  // F_ax = K_ax delta
+      if constexpr (kWedge) wca_[r] = -a * J(kCore[r], L::kFh);  // the bolt row's actuator force
+      else if constexpr (L::kAxial) wca_[r] = -a * J(kCore[r], L::kDelta);  // F_ax = K_ax delta
     }
-    factor_lu4();
-    if constexpr (L::kAxial) {
+    factor_lu();
+    if constexpr (kWedge) {
+      w_hh_ = T(1) - a * J(L::kFh, L::kFh);
+    } else if constexpr (L::kAxial) {
       // W_AA = [[w_hh 0 0] [0 1 -a J_d,dd] [w_dh w_dd w_dd,dd]]
       w_hh_ = T(1) - a * J(L::kFh, L::kFh);
       w_d_dd_ = -a * J(L::kDelta, L::kDeltaDot);
@@ -60,37 +77,49 @@ class RomWSolver {
   // k = W^-1 f.
   Vec solve(const Vec& f) const {
     Vec k;
-    T k_delta(0);
-    if constexpr (L::kAxial) {
+    // The axial value the core rows see: k_delta without wedging (its block
+    // is solved first), k_Fh with wedging (the actuator row stands alone).
+    T k_axial(0);
+    if constexpr (kWedge) {
+      k(L::kFh) = f(L::kFh) / w_hh_;
+      k_axial = k(L::kFh);
+    } else if constexpr (L::kAxial) {
       k(L::kFh) = f(L::kFh) / w_hh_;
       k(L::kDeltaDot) = (f(L::kDeltaDot) - w_dh_ * k(L::kFh) - w_dd_ * f(L::kDelta)) / w_dd_piv_;
-      k_delta = f(L::kDelta) - w_d_dd_ * k(L::kDeltaDot);
-      k(L::kDelta) = k_delta;
+      k_axial = f(L::kDelta) - w_d_dd_ * k(L::kDeltaDot);
+      k(L::kDelta) = k_axial;
     }
-    T rhs[4];
-    for (int r = 0; r < 4; ++r) {
+    T rhs[kM];
+    #pragma GCC unroll 8
+    for (int r = 0; r < kM; ++r) {
       T v = f(kCore[r]);
+      #pragma GCC unroll 8
       for (int p = 0; p < kNumKin; ++p) v -= wcp_[r][p] * f(kKin[p]);
-      if constexpr (L::kAxial) v -= wca_[r] * k_delta;
+      if constexpr (L::kAxial) v -= wca_[r] * k_axial;
       rhs[r] = v;
     }
-    T kc[4];
-    solve_lu4(rhs, kc);
-    for (int r = 0; r < 4; ++r) k(kCore[r]) = kc[r];
+    T kc[kM];
+    solve_lu(rhs, kc);
+    #pragma GCC unroll 8
+    for (int r = 0; r < kM; ++r) k(kCore[r]) = kc[r];
+    #pragma GCC unroll 8
     for (int p = 0; p < kNumKin; ++p) k(kKin[p]) = f(kKin[p]) + kin_[p] * kc[kKinCore[p]];
     return k;
   }
 
  private:
-  // LU with partial pivoting of the 4x4 core matrix, in place (Doolittle,
-  // unit lower triangle). Written out because Eigen's general
-  // PartialPivLU costs 1,400 instructions per 4x4 on the M4F.
-  void factor_lu4() {
-    for (int i = 0; i < 4; ++i) perm_[i] = i;
-    for (int k = 0; k < 4; ++k) {
+  // LU with partial pivoting of the core matrix, in place (Doolittle, unit
+  // lower triangle). Written out because Eigen's general PartialPivLU costs
+  // 1,400 instructions per 4x4 on the M4F.
+  void factor_lu() {
+    #pragma GCC unroll 8
+    for (int i = 0; i < kM; ++i) perm_[i] = i;
+    #pragma GCC unroll 8
+    for (int k = 0; k < kM; ++k) {
       int piv = k;
       T big = abs_of(lu_[k][k]);
-      for (int i = k + 1; i < 4; ++i) {
+      #pragma GCC unroll 8
+      for (int i = k + 1; i < kM; ++i) {
         const T v = abs_of(lu_[i][k]);
         if (v > big) {
           big = v;
@@ -98,7 +127,8 @@ class RomWSolver {
         }
       }
       if (piv != k) {
-        for (int j = 0; j < 4; ++j) {
+        #pragma GCC unroll 8
+        for (int j = 0; j < kM; ++j) {
           const T t = lu_[k][j];
           lu_[k][j] = lu_[piv][j];
           lu_[piv][j] = t;
@@ -109,36 +139,44 @@ class RomWSolver {
       }
       // A zero pivot (singular W) would give inf/NaN (float) or a saturated
       // value (fixed); the simulator's watchdog reports either.
-      for (int i = k + 1; i < 4; ++i) {
+      #pragma GCC unroll 8
+      for (int i = k + 1; i < kM; ++i) {
         const T l = lu_[i][k] / lu_[k][k];
         lu_[i][k] = l;
-        for (int j = k + 1; j < 4; ++j) lu_[i][j] -= l * lu_[k][j];
+        #pragma GCC unroll 8
+        for (int j = k + 1; j < kM; ++j) lu_[i][j] -= l * lu_[k][j];
       }
     }
   }
 
-  void solve_lu4(const T b[4], T x[4]) const {
-    T y[4];
-    for (int i = 0; i < 4; ++i) {
+  void solve_lu(const T (&b)[kM], T (&x)[kM]) const {
+    T y[kM];
+    #pragma GCC unroll 8
+    for (int i = 0; i < kM; ++i) {
       T v = b[perm_[i]];
+      #pragma GCC unroll 8
       for (int j = 0; j < i; ++j) v -= lu_[i][j] * y[j];
       y[i] = v;
     }
-    for (int i = 3; i >= 0; --i) {
+    #pragma GCC unroll 8
+    for (int i = kM - 1; i >= 0; --i) {
       T v = y[i];
-      for (int j = i + 1; j < 4; ++j) v -= lu_[i][j] * x[j];
+      #pragma GCC unroll 8
+      for (int j = i + 1; j < kM; ++j) v -= lu_[i][j] * x[j];
       x[i] = v / lu_[i][i];
     }
   }
 
   static T abs_of(const T& v) { return v < T(0) ? -v : v; }
 
-  T kin_[3]{};
-  T wcp_[4][3]{};
-  T wca_[4]{};
-  T w_hh_{}, w_d_dd_{}, w_dh_{}, w_dd_{}, w_dd_piv_{};
-  T lu_[4][4]{};
-  int perm_[4]{};
+  // Written by factor() before solve() reads them; not initialised, since a
+  // solver is made for every step and zeroing it cost 60 instructions there.
+  T kin_[5];
+  T wcp_[kM][5];
+  T wca_[kM];
+  T w_hh_, w_d_dd_, w_dh_, w_dd_, w_dd_piv_;
+  T lu_[kM][kM];
+  int perm_[kM];
 };
 
 // One ROS2 or linearly implicit Euler step of a plant without wedging, from
@@ -164,10 +202,9 @@ void rom_step_implicit(Method m, const CvtRom<T, F>& sys, typename CvtRom<T, F>:
 
 // One step of `m` on the plant: ROS2 and linearly implicit Euler through
 // RomWSolver, the explicit methods through the generic integrators;
-// `w_slope_floor` as for rom_step_implicit (for the implicit methods). The
-// dense Rosenbrock code is instantiated only for the wedging plants (whose
-// axial rows couple to the rest): with 64 plant types compiled for the host
-// tools, its Eigen LUs would be most of their compile time.
+// `w_slope_floor` as for rom_step_implicit (for the implicit methods). No
+// plant instantiates the dense Rosenbrock code: with 64 plant types compiled
+// for the host tools, its Eigen LUs would be most of their compile time.
 template <class T, std::uint32_t F>
 void rom_step(Method m, const CvtRom<T, F>& sys, typename CvtRom<T, F>::State& x, const T& h,
               bool w_slope_floor = false, CarryOf<CvtRom<T, F>>* carry = nullptr) {
@@ -180,13 +217,15 @@ void rom_step(Method m, const CvtRom<T, F>& sys, typename CvtRom<T, F>::State& x
     case Method::ros2: break;
   }
   if constexpr (RomLayout<F>::kWedge) {
-    // Wedging couples the axial rows to the radial and tangential ones, so
-    // the block elimination does not apply: dense LU (docs/rom.md#wedging).
+    // Wedging evaluates its contact inside derivative() and jacobian();
+    // the solve is the same block elimination (docs/rom.md#wedging).
     typename CvtRom<T, F>::Jacobian J;
-    sys.jacobian(x, J);
+    typename CvtRom<T, F>::State f;
+    sys.jacobian_and_derivative(x, J, f);
     if (w_slope_floor) sys.add_w_slope_floor(x, J);
-    if (m == Method::linear_implicit_euler) step_linear_implicit_euler_with(sys, x, h, J, carry);
-    else step_ros2_with(sys, x, h, J, carry);
+    RomWSolver<T, F> w;
+    if (m == Method::linear_implicit_euler) step_linear_implicit_euler_with(sys, x, h, J, w, f, carry);
+    else step_ros2_with(sys, x, h, J, w, f, carry);
   } else {
     rom_step_implicit(m, sys, x, h, sys.contact(x), w_slope_floor, carry);
   }

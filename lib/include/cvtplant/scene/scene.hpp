@@ -134,6 +134,10 @@ struct Scene {
   int substeps = 1;
   Method method = Method::ros2;
   ScalarKind scalar = ScalarKind::f64;
+  // The energy ledger and its watchdog check (RomSimConfig::energy_ledger):
+  // about a tenth of a frame, so a scene that does not need the balance can
+  // leave it off (docs/rom.md#cost); the log's energy group needs it.
+  bool energy_ledger = true;
   std::uint32_t log = rom_log::torques | rom_log::friction | rom_log::energy;
 };
 
@@ -282,6 +286,8 @@ inline SceneIssue validate_scene(const Scene& s) {
     return bad("substeps", "polygon: the step does not resolve the link passing at the starting driver speed "
                            "(8 steps per link needed): raise substeps");
   if ((s.log & ~rom_log::all) != 0u) return bad("log", "unknown log group");
+  if (!s.energy_ledger && (s.log & rom_log::energy) != 0u)
+    return bad("log", "the energy group needs energy_ledger = true");
   return SceneIssue{};
 }
 

@@ -13,6 +13,7 @@ inline RomSimConfig sim_config_of(const Scene& s) {
   c.method = s.method;
   c.substeps = s.substeps;
   c.frame_s = s.frame_s;
+  c.energy_ledger = s.energy_ledger;
   return c;
 }
 
