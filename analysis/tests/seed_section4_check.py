@@ -107,7 +107,7 @@ def run_scene(binary, tmp, scene, t_end):
     j = json.loads(p.stdout)
     with open(os.path.join(out_dir, "summary.json")) as f:
         check(json.load(f) == j, "%s: summary.json equals the printed JSON" % scene)
-    check(j["sample_dt_s"] == 0.001, "%s: sampled at 1 ms" % scene)
+    check(j["sample_s"] == 0.001, "%s: sampled at 1 ms" % scene)
     check(j["plant_fault"] == "none", "%s: the plant ran without fault" % scene)
     sigs = {s["signal"].split()[-1]: s for s in j["signals"]}
     check(set(sigs) == {"F_ax", "torque_transmitted"}, "%s: default signals F_ax and torque_transmitted" % scene)

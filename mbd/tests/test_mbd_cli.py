@@ -13,8 +13,8 @@ import unittest
 CLI = sys.argv.pop(1) if len(sys.argv) > 1 else "cvtplant"
 
 SHORT = ["--t-end", "0.05"]
-JSON_KEYS = ["t_end", "wall_s", "steps", "rhs_evals", "jac_evals", "energy_residual_rel", "omega1_end", "omega2_end",
-             "ratio_mean", "F_ax1_mean", "F_ax1_ripple", "links", "method"]
+JSON_KEYS = ["t_end_s", "wall_s", "steps", "rhs_evals", "jac_evals", "energy_residual_rel", "omega1_end_rad_s", "omega2_end_rad_s",
+             "ratio_mean", "F_ax1_mean_N", "F_ax1_ripple_N", "links", "method"]
 
 
 def run(*args):
@@ -32,11 +32,10 @@ class Run(unittest.TestCase):
         self.assertEqual(j["status"], "ok")
         self.assertEqual(j["method"], "bdf")
         self.assertEqual(j["links"], 44)
-        self.assertEqual(j["t_end"], 0.05)
-        self.assertEqual(j["F_ax1_mean_N"], j["F_ax1_mean"])
+        self.assertEqual(j["t_end_s"], 0.05)
         self.assertLessEqual(j["energy_residual_rel"], 1e-6)
         self.assertGreater(j["steps"], 0)
-        self.assertGreater(j["omega1_end"], 0)
+        self.assertGreater(j["omega1_end_rad_s"], 0)
 
     def test_csv_rows_and_columns(self):
         with tempfile.TemporaryDirectory() as d:

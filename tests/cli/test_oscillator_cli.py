@@ -36,8 +36,8 @@ class Outputs(unittest.TestCase):
         j = json.loads(r.stdout)
         self.assertTrue(j["settled"])
         self.assertEqual(j["behaviour"], "settled")
-        self.assertAlmostEqual(j["final_state"]["x1"], j["sliding_equilibrium_m"], delta=1e-5)
-        self.assertGreater(j["run_time_s"], 0.0)
+        self.assertAlmostEqual(j["final_state"]["x1_m"], j["sliding_equilibrium_m"], delta=1e-5)
+        self.assertGreater(j["wall_s"], 0.0)
 
     def test_json_summary_oscillates_for_stribeck(self):
         r = run("oscillator", "--friction", "stribeck", "--x0", "0,3,0,6", "--t-end", "60",
@@ -56,7 +56,7 @@ class Outputs(unittest.TestCase):
             self.assertEqual(r.returncode, 0, scalar + r.stderr)
             j = json.loads(r.stdout)
             # q16.16 resolves 1.5e-5 m; float and double agree far better.
-            self.assertAlmostEqual(j["final_state"]["x1"], j["sliding_equilibrium_m"], delta=3e-4, msg=scalar)
+            self.assertAlmostEqual(j["final_state"]["x1_m"], j["sliding_equilibrium_m"], delta=3e-4, msg=scalar)
 
     def test_help(self):
         r = run("oscillator", "--help")

@@ -42,7 +42,7 @@ class Scenes(unittest.TestCase):
         r = run("scenes", "--json")
         self.assertEqual(r.returncode, 0, r.stderr)
         j = json.loads(r.stdout)
-        self.assertEqual([s["name"] for s in j], BUILTIN)
+        self.assertEqual([s["scene"] for s in j], BUILTIN)
         self.assertTrue(all(s["integrator"] == "ros2" and s["frame_s"] == 1e-3 for s in j))
 
 
@@ -60,7 +60,7 @@ class Run(unittest.TestCase):
         self.assertEqual(j["fault"], "none")
         self.assertEqual(j["frames"], 2000)
         self.assertEqual(j["features"], "axial,road_load")
-        self.assertLess(abs(j["energy"]["residual_relative"]), 1e-4)
+        self.assertLess(abs(j["energy"]["residual_rel"]), 1e-4)
         self.assertGreater(j["ns_per_frame"], 0)
         # The axial force follows the 4 kN command.
         self.assertAlmostEqual(j["final"]["F_ax_N"], 4000.0, delta=1.0)

@@ -700,7 +700,7 @@ cvtcli::Action register_analyze(CLI::App& app) {
                        so.tau = a->tau;
                        so.m = a->m;
                        json out{{"scene", a->scene},
-                                {"sample_dt_s", run.frame_s},
+                                {"sample_s", run.frame_s},
                                 {"t_end_s", run.t.empty() ? 0.0 : run.t.back()},
                                 {"t_transient_s", so.discard * run.frame_s},
                                 {"plant_fault", run.fault},

@@ -96,7 +96,7 @@ nlohmann::json to_json(const SpectrumResult& r) {
   j[r.is_map ? "mean_log_abs_det_jacobian" : "mean_trace_jacobian"] = r.trace_mean;
   j["sum_minus_trace"] = r.sum - r.trace_mean;
   nlohmann::json conv = nlohmann::json::array();
-  for (const auto& row : r.convergence) conv.push_back({{"t", row.t}, {"exponents", row.exponents}});
+  for (const auto& row : r.convergence) conv.push_back({{r.is_map ? "t_iter" : "t_s", row.t}, {"exponents", row.exponents}});
   j["convergence"] = conv;
   j["lambda1_extrapolated"] = r.lambda1_extrapolated;
   j["lambda1_extrapolated_ci"] = 1.96 * r.lambda1_extrapolated_se;
@@ -107,11 +107,13 @@ nlohmann::json to_json(const SpectrumResult& r) {
   }
   j["x_final"] = r.x_final;
   j["steps"] = r.steps;
-  j["dt"] = r.dt;
-  j["t_transient"] = r.t_transient;
-  j["t_warmup"] = r.t_warmup;
-  j["t_end"] = r.t_end;
-  j["t_renorm"] = r.t_renorm;
+  // Flows count time in seconds, maps in iterations: the suffix says which.
+  const std::string u = r.is_map ? "_iter" : "_s";
+  j["dt" + u] = r.dt;
+  j["t_transient" + u] = r.t_transient;
+  j["t_warmup" + u] = r.t_warmup;
+  j["t_end" + u] = r.t_end;
+  j["t_renorm" + u] = r.t_renorm;
   j["reliable"] = r.smooth_along_orbit;
   j["symmetry_zero_exponents"] = r.symmetry_zero_exponents;
   if (!r.notes.empty()) j["notes"] = r.notes;
@@ -213,8 +215,11 @@ cvtcli::Action register_lyapunov(CLI::App& app) {
         throw cvtcli::RunError{e.what()};
       }
       const Verdict v = spectrum_verdict(r);
-      nlohmann::json j = to_json(r);
+      nlohmann::json j;
+      j["subcommand"] = "lyapunov";
+      j.update(to_json(r));
       j["scene"] = s.name;
+      j["exponent_unit"] = s.is_map ? "1/iteration" : "1/s";
       j["ci_method"] = "batch means over " + std::to_string(o.batches) + " equal batches, Student t";
       j["params"] = p;
       j["x0"] = x0;
@@ -242,7 +247,7 @@ cvtcli::Action register_lyapunov(CLI::App& app) {
           diff.push_back(r2.exponents[i] - r.exponents[i]);
           worst = std::max(worst, std::abs(diff.back()));
         }
-        j["dt_check"] = {{"dt_half", o2.dt}, {"exponents_dt_half", r2.exponents}, {"difference", diff}, {"max_abs_difference", worst}};
+        j["dt_check"] = {{"dt_half_s", o2.dt}, {"exponents_dt_half", r2.exponents}, {"difference", diff}, {"max_abs_difference", worst}};
       }
       progress.finish();
       if (a->json) {

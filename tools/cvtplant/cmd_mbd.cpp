@@ -246,7 +246,6 @@ nlohmann::json summary_json(const ModelOptions& o, int friction_case, const RunO
   j["dt_s"] = o.method == "rk4" ? nlohmann::json(o.dt_s) : nlohmann::json(nullptr);
   j["sheaves"] = o.sheaves;
   j["links"] = o.links;
-  j["t_end"] = o.t_end_s;
   j["t_end_s"] = o.t_end_s;
   j["t_reached_s"] = s.last.t_s;
   j["sample_s"] = o.sample_s;
@@ -273,18 +272,14 @@ nlohmann::json summary_json(const ModelOptions& o, int friction_case, const RunO
                  {"D_damping_J", s.last.D_damping_J},
                  {"W_clamp_J", s.last.W_clamp_J},
                  {"residual_J", cvt::mbd::ledger_residual_J(s.last, st.energy0_J)}};
-  j["omega1_end"] = s.omega_end_rad_s[0];
   j["omega1_end_rad_s"] = s.omega_end_rad_s[0];
-  j["omega2_end"] = s.omega_end_rad_s[1];
   j["omega2_end_rad_s"] = s.omega_end_rad_s[1];
   j["ratio_mean"] = jnum(s.ratio_mean);
   j["ratio_end"] = jnum(s.ratio_end);
   j["ratio_last_window"] = jnum(s.ratio_window);
   j["window_s"] = s.window_s;
-  j["F_ax1_mean"] = jnum(s.F_ax_mean_N[0]);
   j["F_ax1_mean_N"] = jnum(s.F_ax_mean_N[0]);
   j["F_ax2_mean_N"] = jnum(s.F_ax_mean_N[1]);
-  j["F_ax1_ripple"] = jnum(s.F_ax1_ripple_N);
   j["F_ax1_ripple_N"] = jnum(s.F_ax1_ripple_N);
   j["F_ax1_last_window_mean_N"] = jnum(s.F_ax_window_mean_N[0]);
   j["F_ax2_last_window_mean_N"] = jnum(s.F_ax_window_mean_N[1]);

@@ -222,8 +222,8 @@ cvtcli::Action register_oscillator(CLI::App& app) {
       j["dt_actual_s"] = s.dt_actual_s;
       j["t_end_s"] = o.t_end_s;
       j["steps"] = s.steps;
-      j["final_state"] = {{"x1", s.final_state[0]}, {"v1", s.final_state[1]}, {"x2", s.final_state[2]},
-                          {"v2", s.final_state[3]}};
+      j["final_state"] = {{"x1_m", s.final_state[0]}, {"v1_m_s", s.final_state[1]}, {"x2_m", s.final_state[2]},
+                          {"v2_m_s", s.final_state[3]}};
       j["finite"] = s.finite;
       j["settled"] = s.settled;
       j["behaviour"] = behaviour;
@@ -231,7 +231,7 @@ cvtcli::Action register_oscillator(CLI::App& app) {
       j["last_window"] = {{"window_s", o.settle_window_s}, {"x1_peak_to_peak_m", s.x1_max - s.x1_min},
                           {"max_abs_velocity_m_s", s.v_abs_max}};
       j["period_s"] = s.period_s > 0 ? nlohmann::json(s.period_s) : nlohmann::json(nullptr);
-      j["run_time_s"] = s.wall_s;
+      j["wall_s"] = s.wall_s;
       j["ns_per_step"] = s.steps > 0 ? 1e9 * s.wall_s / static_cast<double>(s.steps) : 0.0;
       cvtcli::print_json(j);
     } else {

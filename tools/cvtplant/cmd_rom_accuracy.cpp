@@ -181,14 +181,14 @@ cvtcli::Action register_rom_accuracy(CLI::App& app) {
                    ex = rel_rms(tr.xd1, ref.xd1);
       const double ns = 1e9 * tr.wall_s / std::max<long>(1, tr.frames);
       auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
-      rows.push_back({{"method", cvt::method_name(c.m)},
+      rows.push_back({{"integrator", cvt::method_name(c.m)},
                       {"substeps", c.substeps},
                       {"scalar", opt->scalar},
-                      {"err_omega1", num(e1)},
-                      {"err_omega2", num(e2)},
-                      {"err_F_ax", num(ef)},
-                      {"err_xd1", num(ex)},
-                      {"energy_residual_relative", tr.residual_rel},
+                      {"err_omega1_rel", num(e1)},
+                      {"err_omega2_rel", num(e2)},
+                      {"err_F_ax_rel", num(ef)},
+                      {"err_xd1_rel", num(ex)},
+                      {"energy_residual_rel", tr.residual_rel},
                       {"ns_per_frame", ns},
                       {"fault", cvt::rom_fault_name(tr.fault)}});
       progress.finish();  // the row goes where the bar was; the next update redraws it below
@@ -198,10 +198,11 @@ cvtcli::Action register_rom_accuracy(CLI::App& app) {
     }
     if (opt->json) {
       nlohmann::json j;
+      j["subcommand"] = "rom-accuracy";
       j["scene"] = loaded->name;
       j["t_end_s"] = s.t_end_s;
       j["frame_s"] = s.frame_s;
-      j["reference"] = {{"method", "ros2"}, {"substeps", opt->ref_substeps}, {"scalar", "double"}};
+      j["reference"] = {{"integrator", "ros2"}, {"substeps", opt->ref_substeps}, {"scalar", "double"}};
       j["rows"] = rows;
       cvtcli::print_json(j);
     }

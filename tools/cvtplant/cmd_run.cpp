@@ -311,19 +311,9 @@ cvtcli::Action register_run(CLI::App& app) {
       j["source"] = loaded->source;
       j["features"] = cvtcli::feature_names(s.features);
       j["scalar"] = cvt::scalar_kind_name(s.scalar);
-      j["solver"] = o.solver;
-      if (adaptive) {
-        j["integrator"] = "rodas4";
-        j["rtol"] = acfg.rtol;
-        j["atol"] = acfg.atol;
-        j["work"] = {{"steps", ad.work.accepted},      {"rejected", ad.work.rejected},
-                     {"rhs", ad.work.rhs},             {"jacobians", ad.work.jacobians},
-                     {"factorizations", ad.work.factorizations}, {"solves", ad.work.solves}};
-      } else {
-        j["integrator"] = cvt::method_name(s.method);
-      }
-      j["dt_s"] = s.frame_s;
-      if (!adaptive) j["substeps"] = s.substeps;
+      j["integrator"] = cvt::method_name(s.method);
+      j["frame_s"] = s.frame_s;
+      j["substeps"] = s.substeps;
       j["frames"] = r.frames;
       j["t_end_s"] = r.t_end_s;
       j["fault"] = cvt::rom_fault_name(r.fault);
@@ -331,7 +321,7 @@ cvtcli::Action register_run(CLI::App& app) {
       if (s.energy_ledger) j["energy"] = {{"stored_initial_J", r.stored0},  {"stored_final_J", r.stored}, {"input_J", r.input},
                      {"actuator_J", r.actuator},       {"load_J", r.load},           {"friction_loss_J", r.friction},
                      {"damping_loss_J", r.damping},    {"residual_J", r.residual},   {"flow_scale_J", r.scale},
-                     {"residual_relative", rel}};
+                     {"residual_rel", rel}};
       j["mean"] = {{"omega1_rad_s", r.mean_w1}, {"omega2_rad_s", r.mean_w2}, {"F_ax_N", r.mean_fax}};
       j["max_abs_slip"] = r.max_abs_slip;
       j["final"] = {{"omega1_rad_s", r.final_w1},
@@ -339,8 +329,8 @@ cvtcli::Action register_run(CLI::App& app) {
                     {"F_ax_N", r.final_fax},
                     {"slip", r.final_slip},
                     {"torque_transmitted_Nm", r.final_torque}};
-      j["run_time_s"] = r.wall_s;
-      j["output_time_s"] = r.output_s;
+      j["wall_s"] = r.wall_s;
+      j["output_wall_s"] = r.output_s;
       j["ns_per_frame"] = ns_frame;
       j["plant_ns_per_frame"] = plant_ns;
       j["output_ns_per_frame"] = output_ns;

@@ -19,7 +19,7 @@ cvtcli::Action register_scenes(CLI::App& app) {
     if (*json) {
       nlohmann::json arr = nlohmann::json::array();
       for (const cvt::Scene& s : cvt::kBuiltinScenes) {
-        arr.push_back({{"name", s.name},
+        arr.push_back({{"scene", s.name},
                        {"summary", s.summary},
                        {"features", cvtcli::feature_names(s.features)},
                        {"t_end_s", s.t_end_s},
