@@ -311,9 +311,19 @@ cvtcli::Action register_run(CLI::App& app) {
       j["source"] = loaded->source;
       j["features"] = cvtcli::feature_names(s.features);
       j["scalar"] = cvt::scalar_kind_name(s.scalar);
-      j["integrator"] = cvt::method_name(s.method);
+      j["solver"] = o.solver;
+      if (adaptive) {
+        j["integrator"] = "rodas4";
+        j["rtol"] = acfg.rtol;
+        j["atol"] = acfg.atol;
+        j["work"] = {{"steps", ad.work.accepted},      {"rejected", ad.work.rejected},
+                     {"rhs", ad.work.rhs},             {"jacobians", ad.work.jacobians},
+                     {"factorizations", ad.work.factorizations}, {"solves", ad.work.solves}};
+      } else {
+        j["integrator"] = cvt::method_name(s.method);
+      }
       j["frame_s"] = s.frame_s;
-      j["substeps"] = s.substeps;
+      if (!adaptive) j["substeps"] = s.substeps;
       j["frames"] = r.frames;
       j["t_end_s"] = r.t_end_s;
       j["fault"] = cvt::rom_fault_name(r.fault);
