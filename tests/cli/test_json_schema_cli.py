@@ -28,7 +28,7 @@ DIMENSIONLESS = {
     "rhs_evals", "jac_evals", "linear_setups", "newton_iters", "error_test_fails", "newton_fails", "jacobian_nnz",
     "plant_evaluations", "plant_faults", "status", "points", "rtol", "slip", "max_abs_slip", "ci_level",
     "symmetry_zero_exponents", "zero_index", "wrap_links_end", "cost_start", "cost_end", "rms_residual_start",
-    "rms_residual_end", "ref_substeps",
+    "rms_residual_end", "ref_substeps", "atol", "rejected", "rhs", "jacobians", "factorizations", "solves",
 }
 # Lyapunov rates are in the unit the enclosing object states in `exponent_unit`;
 # the state (`x0`, `x_final`, `params`) is the scene's own.
@@ -143,6 +143,13 @@ class Schema(unittest.TestCase):
         self.assertEqual(j["frame_s"], 1e-3)
         self.assertEqual(j["t_end_s"], 0.05)
         for k in ("scene", "scalar", "integrator", "substeps", "wall_s"):
+            self.assertIn(k, j)
+
+    def test_run_adaptive(self):
+        j = self.check(run_json("run", "--scene", "seed-case1", "--t-end", "0.05", "--solver", "adaptive"))
+        self.assertEqual(j["frame_s"], 1e-3)
+        self.assertEqual(j["integrator"], "rodas4")
+        for k in ("rtol", "atol", "work", "wall_s"):
             self.assertIn(k, j)
 
     def test_rom_accuracy(self):

@@ -184,6 +184,73 @@ class Run(unittest.TestCase):
             self.assertAlmostEqual(float(first["geometric_ratio"]), 0.1143 / 0.0762, places=9)
 
 
+class Adaptive(unittest.TestCase):
+    """`run --solver adaptive` (docs/numerics.md#adaptive)."""
+
+    def run_csv(self, d, name, *args):
+        path = os.path.join(d, name)
+        r = run("run", "--csv", path, "--json", *args)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(path, "rb") as f:
+            return json.loads(r.stdout), f.read()
+
+    def test_same_rows_as_the_frame_stepper_and_close_to_a_fine_one(self):
+        with tempfile.TemporaryDirectory() as d:
+            common = ("--scene", "tip-in", "--t-end", "1.5")
+            ja, a = self.run_csv(d, "a.csv", *common, "--solver", "adaptive", "--rtol", "1e-8")
+            jf, f = self.run_csv(d, "f.csv", *common, "--substeps", "64")
+        ra = list(csv.DictReader(a.decode().splitlines()))
+        rf = list(csv.DictReader(f.decode().splitlines()))
+        self.assertEqual(ja["solver"], "adaptive")
+        self.assertEqual(ja["integrator"], "rodas4")
+        self.assertEqual(ja["fault"], "none")
+        self.assertEqual([r["t"] for r in ra], [r["t"] for r in rf])
+        self.assertEqual(list(ra[0].keys()), list(rf[0].keys()))
+        # The ramp of tip-in (1.0 .. 1.2 s) is held per frame in both: the
+        # 64-substep frame stepper is an independent reference to ~1e-6 here.
+        worst = max(abs(float(x["omega1"]) - float(y["omega1"])) for x, y in zip(ra, rf))
+        self.assertLess(worst, 1e-3)
+        self.assertLess(abs(ja["energy"]["residual_rel"]), 1e-4)
+
+    def test_steps_over_frames_where_the_inputs_hold(self):
+        r = run("run", "--scene", "seed-case1", "--t-end", "5", "--solver", "adaptive", "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        j = json.loads(r.stdout)
+        self.assertEqual(j["frames"], 5000)
+        self.assertLess(j["work"]["steps"], j["frames"] / 4)
+        self.assertEqual(j["work"]["jacobians"], j["work"]["steps"])
+
+    def test_bit_for_bit_run_to_run(self):
+        with tempfile.TemporaryDirectory() as d:
+            args = ("--scene", "seed-case2", "--t-end", "2", "--solver", "adaptive", "--rtol", "1e-7")
+            _, a = self.run_csv(d, "a.csv", *args)
+            _, b = self.run_csv(d, "b.csv", *args)
+        self.assertGreater(len(a), 100000)
+        self.assertEqual(a, b)
+
+    def test_step_cap_is_a_run_error(self):
+        r = run("run", "--scene", "seed-case1", "--t-end", "2", "--solver", "adaptive", "--max-steps", "20")
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("--max-steps", r.stderr)
+
+    def test_refusals(self):
+        cases = [
+            (("--scene", "ratio-control", "--solver", "adaptive"), "wedging"),
+            (("--scene", "seed-case1", "--solver", "adaptive", "--scalar", "float"), "double"),
+            (("--scene", "seed-case1", "--solver", "adaptive", "--substeps", "4"), "--substeps"),
+            (("--scene", "seed-case1", "--solver", "adaptive", "--integrator", "rk4"), "--integrator"),
+            (("--scene", "seed-case1", "--rtol", "1e-6"), "--solver adaptive"),
+            (("--scene", "seed-case1", "--solver", "adaptive", "--rtol", "nan"), "--rtol"),
+            (("--scene", "seed-case1", "--solver", "adaptive", "--atol", "0"), "--atol"),
+            (("--scene", "seed-case1", "--solver", "implicit"), "--solver"),
+        ]
+        for args, part in cases:
+            r = run("run", *args)
+            self.assertEqual(r.returncode, 2, args)
+            self.assertIn(part, r.stderr, args)
+            self.assertEqual(r.stdout, "", args)
+
+
 class BadInput(unittest.TestCase):
     def assert_usage(self, r, *parts):
         self.assertEqual(r.returncode, 2, r.stdout + r.stderr)

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "commands.hpp"
@@ -16,6 +17,7 @@
 #include "registry.hpp"
 #include "scene_file.hpp"
 #include "scene_simulator.hpp"
+#include "cvtplant/scene/adaptive_runner.hpp"
 #include "cvtplant/scene/scene_runner.hpp"
 
 namespace {
@@ -32,7 +34,9 @@ struct Result {
   double final_w1 = 0, final_w2 = 0, final_fax = 0, final_slip = 0, final_torque = 0;
 };
 
-// The frame loop on the scene's plant (any scalar, any feature set). The
+// The frame loop on the scene's plant (any scalar, any feature set), on the
+// frame stepper or the adaptive solver: both show each frame through the same
+// view (outputs, energy, fault, state_si), so the rows are written once. The
 // CSV is written through a buffered shortest-round-trip writer and its cost
 // is timed apart from the plant's (docs/cli.md#run).
 struct Runner {
@@ -40,12 +44,18 @@ struct Runner {
   std::FILE* csv;
   int every;
 
+  // The frame stepper.
   template <class T>
   Result operator()(cvt::IRomSimulator<T>& simulator) {
-    using Sim = cvt::IRomSimulator<T>;
+    return frames<T>(simulator.features(), simulator.state_count(),
+                     [&](auto& on_frame) { return cvt::run_frames(simulator, scene, scene.frame_s, on_frame); });
+  }
+
+  // drive(on_frame) runs the frames and returns the fault at the end.
+  template <class T, class Drive>
+  Result frames(std::uint32_t features, int n_states, Drive&& drive) {
     using clock = std::chrono::steady_clock;
     const std::uint32_t log = scene.log;
-    const int n_states = simulator.state_count();
     cvt::analysis::CsvWriter w(csv);
     clock::duration output_time{};
     if (csv != nullptr) {
@@ -61,7 +71,7 @@ struct Runner {
         for (const char* h : {"E_stored", "W_in", "W_actuator", "W_load", "W_friction", "W_damping", "E_residual"})
           w.text(h);
       if (log & cvt::rom_log::states)
-        for (int k = 0; k < n_states; ++k) w.text(cvt::rom_state_name(simulator.features(), k));
+        for (int k = 0; k < n_states; ++k) w.text(cvt::rom_state_name(features, k));
       w.text("fault");
       w.end_row();
       output_time += clock::now() - t0;
@@ -72,7 +82,7 @@ struct Runner {
     const long n_frames = cvt::scene_frames(scene);
     // No bar when the CSV itself goes to stdout: on a terminal the two would interleave.
     cvtcli::Progress progress(std::string("run ") + scene.name, csv == stdout ? 0.0 : scene.t_end_s);
-    auto on_frame = [&](long i, double t, const Sim& sim) {
+    auto on_frame = [&](long i, double t, const auto& sim) {
       const cvt::RomOutputs<T> o = sim.outputs();
       const auto& e = sim.energy();
       if (i > 0) {
@@ -144,7 +154,7 @@ struct Runner {
       return cvtcli::output_ok(csv);
     };
     const auto t0 = clock::now();
-    r.fault = cvt::run_frames(simulator, scene, scene.frame_s, on_frame);
+    r.fault = drive(on_frame);
     if (csv != nullptr) {
       const auto t1 = clock::now();
       w.flush();
@@ -160,13 +170,42 @@ struct Runner {
     return r;
   }
 };
+// The adaptive solver (docs/numerics.md#adaptive) on the scene's plant: double
+// precision, the feature sets without wedging (masks 0..15).
+struct AdaptiveOutcome {
+  cvt::AdaptiveStatus status = cvt::AdaptiveStatus::ok;
+  cvt::Rodas4Work work;
+  double t_s = 0;
+};
 
+template <std::uint32_t F, class OnFrame>
+cvt::RomFault run_adaptive_mask(const cvt::Scene& s, const cvt::AdaptiveConfig& c, OnFrame& on_frame,
+                                AdaptiveOutcome& out) {
+  cvt::AdaptiveRun<F> run(s.params, c);
+  cvt::RomFault fault = cvt::RomFault::none;
+  out.status = run.run(s, s.frame_s, [&](long i, double t, const cvt::AdaptiveFrame<F>& frame) {
+    fault = frame.fault();
+    return on_frame(i, t, frame);
+  });
+  out.work = run.work();
+  out.t_s = run.time_s();
+  return fault;
+}
+
+template <class OnFrame, std::uint32_t... Fs>
+cvt::RomFault run_adaptive(const cvt::Scene& s, const cvt::AdaptiveConfig& c, OnFrame& on_frame, AdaptiveOutcome& out,
+                           std::integer_sequence<std::uint32_t, Fs...>) {
+  cvt::RomFault fault = cvt::RomFault::none;
+  (void)((s.features == Fs ? (fault = run_adaptive_mask<Fs>(s, c, on_frame, out), true) : false) || ...);
+  return fault;
+}
 
 struct Options {
   std::string scene;
   double t_end_s = -1, dt_s = -1;
   int substeps = -1;
-  std::string integrator, scalar, csv;
+  std::string integrator, scalar, csv, solver = "fixed";
+  double rtol = 1e-6, atol = -1;
   int every = 1;
   bool json = false;
   cvtcli::Caps caps;
@@ -184,6 +223,14 @@ cvtcli::Action register_run(CLI::App& app) {
                   "euler | semi-implicit-euler | heun | rk4 | linear-implicit-euler | ros2 (default: the scene's)");
   sub->add_option("--scalar", opt->scalar, "double | float | fixed (q16.16) (default: the scene's)")
       ->check(CLI::IsMember({"double", "float", "fixed"}));
+  sub->add_option("--solver", opt->solver,
+                  "fixed: the real-time frame stepper (default) | adaptive: RODAS4 with error control, frames from "
+                  "its dense output (double, no wedging; docs/numerics.md#adaptive)")
+      ->check(CLI::IsMember({"fixed", "adaptive"}));
+  cvtcli::add_real(sub, "--rtol", opt->rtol, {1e-14, 1, true}, "Adaptive solver: relative tolerance (default 1e-6)");
+  cvtcli::add_real(sub, "--atol", opt->atol, {1e-14, 1, true},
+                   "Adaptive solver: absolute tolerance per unit of each state's floor (1 rad/s, 1 um, 1 mm/s, 1 N, "
+                   "1 mrad; default: --rtol)");
   sub->add_option("--csv", opt->csv, "Write the frames as CSV ('-' for stdout)");
   cvtcli::add_int(sub, "--every", opt->every, 1, 1000000000, "Write every N-th frame to the CSV");
   sub->add_flag("--json", opt->json, "Print a JSON summary instead of the text one");
@@ -204,9 +251,26 @@ cvtcli::Action register_run(CLI::App& app) {
     const cvt::SceneIssue issue = cvt::validate_scene(s);
     if (!issue.ok) throw cvtcli::UsageError{std::string(issue.field) + ": " + issue.message};
     if (o.json && o.csv == "-") throw cvtcli::UsageError{"--json and --csv - both write to stdout; give --csv a file"};
+    const bool adaptive = o.solver == "adaptive";
+    if (adaptive) {
+      // The frame stepper's settings have no meaning for the adaptive solver:
+      // refused rather than ignored.
+      for (const char* flag : {"--substeps", "--integrator"})
+        if (sub->count(flag) > 0) throw cvtcli::UsageError{std::string(flag) + " sets the frame stepper; --solver adaptive chooses its own steps"};
+      if (s.scalar != cvt::ScalarKind::f64)
+        throw cvtcli::UsageError{"--solver adaptive runs in double only (the scene asks for " +
+                                 std::string(cvt::scalar_kind_name(s.scalar)) + ")"};
+      if ((s.features & cvt::rom_feature::wedging) != 0u)
+        throw cvtcli::UsageError{"--solver adaptive: the wedging plant keeps the frame stepper (its driven actuator "
+                                 "and end stops act per frame; docs/numerics.md#adaptive)"};
+    } else {
+      for (const char* flag : {"--rtol", "--atol"})
+        if (sub->count(flag) > 0) throw cvtcli::UsageError{std::string(flag) + " needs --solver adaptive"};
+    }
     const double frames = static_cast<double>(cvt::scene_frames(s));
-    cvtcli::require_steps(frames * s.substeps, o.caps,
-                          cvtcli::fmt_count(frames) + " frames x " + std::to_string(s.substeps) + " substeps");
+    if (!adaptive)
+      cvtcli::require_steps(frames * s.substeps, o.caps,
+                            cvtcli::fmt_count(frames) + " frames x " + std::to_string(s.substeps) + " substeps");
     // q16.16 steps in units of 2^-10 s (docs/rom.md#fixed-point); 32 LSB of
     // that unit keep the rounding of the substep under 2 %.
     if (s.scalar == cvt::ScalarKind::q16_16 && s.frame_s / s.substeps / cvt::RomUnits<cvt::q16_16>::time_s < 32.0 / 65536.0)
@@ -215,7 +279,20 @@ cvtcli::Action register_run(CLI::App& app) {
     std::vector<std::string> inputs;
     if (loaded->source != "built-in") inputs.push_back(loaded->source);
     std::FILE* csv = o.csv.empty() ? nullptr : cvtcli::open_output(o.csv, "--csv", inputs);
-    const Result r = cvtcli::with_scene_simulator(s, s.scalar, cvt::sim_config_of(s), Runner{s, csv, o.every});
+    cvt::AdaptiveConfig acfg;
+    acfg.rtol = o.rtol;
+    acfg.atol = o.atol > 0 ? o.atol : o.rtol;
+    acfg.energy = s.energy_ledger;
+    acfg.max_steps = static_cast<long>(std::min(o.caps.max_steps, 9e18));
+    AdaptiveOutcome ad;
+    Runner runner{s, csv, o.every};
+    const Result r =
+        adaptive ? runner.frames<double>(s.features, cvt::rom_state_index(s.features).count,
+                                         [&](auto& on_frame) {
+                                           return run_adaptive(s, acfg, on_frame, ad,
+                                                               std::make_integer_sequence<std::uint32_t, 16>{});
+                                         })
+                 : cvtcli::with_scene_simulator(s, s.scalar, cvt::sim_config_of(s), runner);
     cvtcli::close_output(csv);
     // With the CSV on stdout the text summary goes to stderr: stdout holds data only.
     std::FILE* info = csv == stdout ? stderr : stdout;
@@ -234,9 +311,19 @@ cvtcli::Action register_run(CLI::App& app) {
       j["source"] = loaded->source;
       j["features"] = cvtcli::feature_names(s.features);
       j["scalar"] = cvt::scalar_kind_name(s.scalar);
-      j["integrator"] = cvt::method_name(s.method);
+      j["solver"] = o.solver;
+      if (adaptive) {
+        j["integrator"] = "rodas4";
+        j["rtol"] = acfg.rtol;
+        j["atol"] = acfg.atol;
+        j["work"] = {{"steps", ad.work.accepted},      {"rejected", ad.work.rejected},
+                     {"rhs", ad.work.rhs},             {"jacobians", ad.work.jacobians},
+                     {"factorizations", ad.work.factorizations}, {"solves", ad.work.solves}};
+      } else {
+        j["integrator"] = cvt::method_name(s.method);
+      }
       j["frame_s"] = s.frame_s;
-      j["substeps"] = s.substeps;
+      if (!adaptive) j["substeps"] = s.substeps;
       j["frames"] = r.frames;
       j["t_end_s"] = r.t_end_s;
       j["fault"] = cvt::rom_fault_name(r.fault);
@@ -257,24 +344,40 @@ cvtcli::Action register_run(CLI::App& app) {
       j["ns_per_frame"] = ns_frame;
       j["plant_ns_per_frame"] = plant_ns;
       j["output_ns_per_frame"] = output_ns;
-      j["ns_per_step"] = plant_ns / s.substeps;
+      j["ns_per_step"] = adaptive ? 1e9 * (r.wall_s - r.output_s) /
+                                        static_cast<double>(std::max<long>(1, ad.work.accepted + ad.work.rejected))
+                                  : plant_ns / s.substeps;
       cvtcli::print_json(j);
     } else {
-      std::fprintf(info, "Scene %s (%s): features %s, %s, %s, dt = %g s x %d substeps\n", loaded->name.c_str(),
-                  loaded->source.c_str(), cvtcli::feature_names(s.features).c_str(), cvt::scalar_kind_name(s.scalar),
-                  cvt::method_name(s.method), s.frame_s, s.substeps);
+      if (adaptive)
+        std::fprintf(info, "Scene %s (%s): features %s, double, adaptive rodas4 (rtol %g, atol %g), frames of %g s\n",
+                     loaded->name.c_str(), loaded->source.c_str(), cvtcli::feature_names(s.features).c_str(), acfg.rtol,
+                     acfg.atol, s.frame_s);
+      else
+        std::fprintf(info, "Scene %s (%s): features %s, %s, %s, dt = %g s x %d substeps\n", loaded->name.c_str(),
+                     loaded->source.c_str(), cvtcli::feature_names(s.features).c_str(),
+                     cvt::scalar_kind_name(s.scalar), cvt::method_name(s.method), s.frame_s, s.substeps);
       std::fprintf(info, "  %ld frames to t = %g s, fault: %s\n", r.frames, r.t_end_s, cvt::rom_fault_name(r.fault));
       std::fprintf(info, "  final: omega1 = %.4f rad/s, omega2 = %.4f rad/s, F_ax = %.1f N, slip = %.5f\n", r.final_w1,
                   r.final_w2, r.final_fax, r.final_slip);
       if (s.energy_ledger) std::fprintf(info, "  energy: in %.4g J, actuator %.4g J, load %.4g J, friction %.4g J, damping %.4g J, "
                   "stored %.4g -> %.4g J, residual %.3g J (%.2e of the flows)\n",
                   r.input, r.actuator, r.load, r.friction, r.damping, r.stored0, r.stored, r.residual, rel);
+      if (adaptive)
+        std::fprintf(info, "  %ld steps (%ld rejected), %ld right-hand sides, %ld Jacobians, %ld factorisations\n",
+                     ad.work.accepted, ad.work.rejected, ad.work.rhs, ad.work.jacobians, ad.work.factorizations);
       if (csv != nullptr)
         std::fprintf(info, "  plant %.0f ns/frame, CSV output %.0f ns/frame (%.3f s wall)\n", plant_ns, output_ns,
                      r.wall_s);
       else
         std::fprintf(info, "  plant %.0f ns/frame (%.3f s wall)\n", plant_ns, r.wall_s);
     }
+    if (adaptive && ad.status == cvt::AdaptiveStatus::step_cap)
+      throw cvtcli::RunError{"the adaptive solver reached the cap of " + cvtcli::fmt_count(o.caps.max_steps) +
+                             " steps at t = " + std::to_string(ad.t_s) + " s; raise it with --max-steps"};
+    if (adaptive && ad.status == cvt::AdaptiveStatus::step_too_small)
+      throw cvtcli::RunError{"the adaptive solver's step fell below 1e-14 of the time at t = " +
+                             std::to_string(ad.t_s) + " s: the tolerances cannot be met in double"};
     if (r.fault != cvt::RomFault::none) {
       char buf[96];
       std::snprintf(buf, sizeof buf, " at t = %g s (frame %ld)", r.t_end_s, r.frames);
