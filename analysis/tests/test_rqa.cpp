@@ -2,12 +2,81 @@
 // (docs/analysis.md#rqa).
 #include <doctest/doctest.h>
 
+#include <cmath>
+#include <map>
+
 #include "cvtplant/analysis/rqa.hpp"
 #include "signals.hpp"
 
 using namespace cvt::analysis;
 
 namespace {
+// The measures straight from a stored N x N matrix, by definition
+// (docs/analysis.md#rqa): diagonal lines of the upper triangle, vertical
+// lines of every column, the band |i-j| <= w left out.
+RqaResult from_matrix(const Embedding& e, double eps, int w, int lmin, int vmin) {
+  const long n = static_cast<long>(e.n);
+  std::vector<char> R(static_cast<std::size_t>(n * n), 0);
+  std::uint64_t rec = 0;
+  for (long i = 0; i < n; ++i)
+    for (long j = 0; j < n; ++j) {
+      double s = 0;
+      for (int d = 0; d < e.m; ++d) s += (e.row(i)[d] - e.row(j)[d]) * (e.row(i)[d] - e.row(j)[d]);
+      const bool r = std::labs(i - j) > w && s <= eps * eps;
+      R[static_cast<std::size_t>(i * n + j)] = r;
+      rec += r;
+    }
+  const auto at = [&](long i, long j) {
+    return i >= 0 && j >= 0 && i < n && j < n && R[static_cast<std::size_t>(i * n + j)];
+  };
+  std::map<long, long> diag, vert;  // length -> count
+  for (long k = w + 1; k < n; ++k)
+    for (long i = 0; i + k < n; ++i)
+      if (at(i, i + k) && !at(i - 1, i + k - 1)) {
+        long l = 1;
+        while (at(i + l, i + k + l)) ++l;
+        ++diag[l];
+      }
+  for (long j = 0; j < n; ++j)
+    for (long i = 0; i < n; ++i)
+      if (at(i, j) && !at(i - 1, j)) {
+        long l = 1;
+        while (at(i + l, j)) ++l;
+        ++vert[l];
+      }
+  RqaResult r;
+  r.recurrences = rec;
+  const double m = static_cast<double>(n - (w + 1));
+  r.pairs = static_cast<std::uint64_t>(m * (m + 1));
+  r.rr = static_cast<double>(rec) / static_cast<double>(r.pairs);
+  // Points on all lines, points on lines of at least `lmin`, those lines, the longest.
+  struct Tally {
+    double all = 0, in_lines = 0, lines = 0;
+    long longest = 0;
+  };
+  const auto tally = [](const std::map<long, long>& h, int lmin) {
+    Tally t;
+    for (auto [l, c] : h) {
+      t.all += static_cast<double>(l * c);
+      if (l < lmin) continue;
+      t.in_lines += static_cast<double>(l * c);
+      t.lines += static_cast<double>(c);
+      t.longest = l;
+    }
+    return t;
+  };
+  const Tally d = tally(diag, lmin), v = tally(vert, vmin);
+  r.det = d.in_lines / d.all;
+  r.l_mean = d.in_lines / d.lines;
+  r.lmax = d.longest;
+  for (auto [l, c] : diag)
+    if (l >= lmin) r.entr -= c / d.lines * std::log(c / d.lines);
+  r.lam = v.in_lines / v.all;
+  r.tt = v.in_lines / v.lines;
+  r.vmax = v.longest;
+  return r;
+}
+
 void same(const RqaResult& a, const RqaResult& b) {
   CHECK(a.recurrences == b.recurrences);
   CHECK(a.pairs == b.pairs);
@@ -32,6 +101,7 @@ TEST_CASE("streaming RQA equals brute force (Lorenz, noise, sine; several Theile
     for (std::size_t i = 0; i < z.size(); ++i) z[i] = lz[i] / 8.0;
     const Embedding e1 = delay_embed(z, 3, 18);
     same(rqa(e1, o), rqa_naive(e1, o));
+    same(rqa_kdtree(e1, o), rqa_naive(e1, o));
     const Embedding e2 = delay_embed(testsig::white_noise(1500), 2, 1);
     o.eps = 0.4;
     same(rqa(e2, o), rqa_naive(e2, o));
@@ -39,6 +109,47 @@ TEST_CASE("streaming RQA equals brute force (Lorenz, noise, sine; several Theile
     o.eps = 0.1;
     same(rqa(e3, o), rqa_naive(e3, o));
   }
+}
+
+TEST_CASE("grid RQA equals the k-d tree method and the stored matrix (m = 1..6, radii from one cell to all)") {
+  const auto lz = testsig::lorenz_x(5000);
+  std::vector<double> z(lz.size());
+  for (std::size_t i = 0; i < z.size(); ++i) z[i] = lz[i] / 8.0;
+  // m = 1, 2 use fewer grid axes than 3; m = 4, 6 check coordinates the grid
+  // does not index. eps 1e-9 forces the finest grid; 50 puts all in one cell.
+  for (int m : {1, 2, 3, 4, 6})
+    for (double eps : {1e-9, 0.05, 0.3, 50.0})
+      if (eps < 50.0 || m == 2)
+        for (int w : {0, 3}) {
+          CAPTURE(m);
+          CAPTURE(eps);
+          CAPTURE(w);
+          RqaOptions o;
+          o.eps = eps;
+          o.theiler = w;
+          const Embedding e = delay_embed(z, m, 9);
+          const RqaResult g = rqa(e, o);
+          same(g, rqa_kdtree(e, o));
+          if (eps == 0.3 && (m == 1 || m == 3)) {
+            const Embedding small = delay_embed(std::vector<double>(z.begin(), z.begin() + 1500), m, 9);
+            RqaOptions os = o;
+            os.lmin = 3;
+            os.vmin = 2;
+            same(rqa(small, os), from_matrix(small, eps, w, os.lmin, os.vmin));
+          }
+        }
+}
+
+TEST_CASE("RQA reports progress from 0 to 1, never backwards") {
+  RqaOptions o;
+  o.eps = 0.2;
+  std::vector<double> seen;
+  o.progress = [&](double f) { seen.push_back(f); };
+  rqa(delay_embed(testsig::sine(3000, 41.0), 2, 10), o);
+  REQUIRE(seen.size() >= 2);
+  CHECK(seen.front() == 0.0);
+  CHECK(seen.back() == 1.0);
+  for (std::size_t i = 1; i < seen.size(); ++i) CHECK(seen[i] >= seen[i - 1]);
 }
 
 TEST_CASE("RQA conventions on a hand-countable series") {

@@ -3,8 +3,9 @@
 // Rule: R(i,j) = 1 iff ||y_i - y_j||_2 <= eps (Euclidean, `<=`).
 // Excluded: every pair with |i-j| <= w (w = Theiler window; w = 0 removes
 // exactly the line of identity, which therefore never counts in RR, DET, ...).
-// Streaming: each row's neighbours come from a k-d tree and are consumed at
-// once; memory is O(N) (no N x N matrix).
+// Streaming (docs/analysis.md#rqa-streaming): rows in order, only the upper
+// triangle's recurrences visited, found in a grid of cells of side eps and
+// consumed at once; memory is O(N) (no N x N matrix).
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -48,7 +49,13 @@ inline int default_lmin(int m, int tau) {
 // sample of pairs (deterministic).
 double radius_for_rr(const Embedding& e, double rr, int theiler);
 
+// Time O(N + recurrences x (candidates per recurrence)), memory about
+// 8 (m + 6) bytes per point besides the embedding.
 RqaResult rqa(const Embedding& e, const RqaOptions& opt);
+// The same measures from a k-d tree radius search over both triangles, with
+// each row sorted for its vertical runs: the earlier streaming method, kept
+// as a reference for the tests and the benchmark.
+RqaResult rqa_kdtree(const Embedding& e, const RqaOptions& opt);
 // O(N^2)-time, O(N)-memory brute force with the same conventions: the
 // reference for the tests and the benchmark.
 RqaResult rqa_naive(const Embedding& e, const RqaOptions& opt);
