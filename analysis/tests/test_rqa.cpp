@@ -144,7 +144,7 @@ TEST_CASE("RQA reports progress from 0 to 1, never backwards") {
   RqaOptions o;
   o.eps = 0.2;
   std::vector<double> seen;
-  o.progress = [&](double f) { seen.push_back(f); };
+  o.progress = [&](double done, double total) { seen.push_back(done / total); };
   rqa(delay_embed(testsig::sine(3000, 41.0), 2, 10), o);
   REQUIRE(seen.size() >= 2);
   CHECK(seen.front() == 0.0);
