@@ -22,6 +22,8 @@ COMMANDS = [
       "--t-peaks", "5", "--jobs", "1"], "sweep lorenz"),
     (["rom-accuracy", "--scene", "seed-case1", "--t-end", "0.5", "--candidates", "ros2:1",
       "--ref-substeps", "20"], "rom-accuracy seed-case1"),
+    (["oscillator", "--friction", "stribeck", "--x0", "0,3,0,6", "--t-end", "100", "--dt", "1e-4",
+      "--integrator", "rk4"], "oscillator"),
 ]
 
 
