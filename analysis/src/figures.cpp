@@ -188,11 +188,11 @@ std::string run_time_history_figure(const std::vector<double>& x, double dt, lon
 }
 
 std::vector<std::string> model_figures(const Model& sc, const Params& p, const std::vector<double>& x0, double dt,
-                                       double t_end, const std::string& out_dir) {
+                                       double t_end, const std::string& out_dir, const ProgressFn& progress) {
   ensure_dir(out_dir);
   const std::string D = out_dir + "/";
   const double sample = sc.is_map ? 1.0 : std::max(dt, t_end / 20000);
-  const std::vector<double> rows = sc.trajectory(p, x0, dt, 0.0, t_end, sample);
+  const std::vector<double> rows = sc.trajectory(p, x0, dt, 0.0, t_end, sample, progress);
   {
     auto f = open_text_file(D + "scene.dat");
     const std::size_t n = rows.size() / sc.dim;

@@ -67,11 +67,11 @@ std::string rom_scene_title(const cvt::Scene& scene, const std::string& name) {
 }
 
 std::vector<std::string> rom_scene_figures(const cvt::Scene& scene, const std::string& name, double t_end,
-                                           const std::string& out_dir) {
+                                           const std::string& out_dir, const ProgressFn& progress) {
   std::vector<std::string> signals;
   for (const Panel& p : panels())
     for (const auto& c : p.curves) signals.push_back(c.first);
-  const RomSeries run = rom_scene_series(scene, name, signals, t_end);
+  const RomSeries run = rom_scene_series(scene, name, signals, t_end, progress);
   if (run.t.empty()) throw InputError("scene '" + name + "': no frame to draw (t_end shorter than a frame)");
   ensure_dir(out_dir);
   const std::string D = out_dir + "/";

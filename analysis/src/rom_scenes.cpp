@@ -92,7 +92,7 @@ const std::vector<std::string>& rom_signal_names() {
 }
 
 RomSeries rom_scene_series(const cvt::Scene& scene, const std::string& name, const std::vector<std::string>& signals,
-                           double t_end) {
+                           double t_end, const ProgressFn& progress) {
   cvt::Scene s = scene;
   if (t_end > 0) s.t_end_s = t_end;
   std::vector<const SignalDef*> defs;
@@ -117,7 +117,8 @@ RomSeries rom_scene_series(const cvt::Scene& scene, const std::string& name, con
   r.frame_s = s.frame_s;
   Holder holder;
   load(holder, s, name);
-  const cvt::RomFault fault = cvt::run_frames(holder.sim(), s, s.frame_s, [&](long, double t, const Sim& sim) {
+  const cvt::RomFault fault = cvt::run_frames(holder.sim(), s, s.frame_s, [&](long i, double t, const Sim& sim) {
+    if ((i & 1023) == 0 && progress) progress(t, s.t_end_s);
     const Outputs o = sim.outputs();
     r.t.push_back(t);
     for (const SignalDef* d : defs) r.signal[d->name].push_back(o.*(d->member));
@@ -159,8 +160,10 @@ Model rom_model(const cvt::Scene& scene, const std::string& name) {
     m.spectrum = [base, name](const Params& p, const std::vector<double>& x, const BenettinOptions& o) {
       return rom_spectrum<N>(base, name, p, x, o);
     };
-    m.trajectory = [base, name](const Params& p, const std::vector<double>& x, double dt, double a, double t,
-                                double c) { return rom_trajectory<N>(base, name, p, x, dt, a, t, c); };
+    m.trajectory_fn = [base, name](const Params& p, const std::vector<double>& x, double dt, double a, double t,
+                                   double c, const ProgressFn& pr) {
+      return rom_trajectory<N>(base, name, p, x, dt, a, t, c, pr);
+    };
   });
   // docs/analysis.md#rom-lyapunov: upper bounds; rom_spectrum shortens both
   // from the stiffest eigenvalue after the transient (the lump contact modes,

@@ -187,7 +187,7 @@ SpectrumResult rom_spectrum(const cvt::Scene& base, const std::string& name, con
 template <int N>
 std::vector<double> rom_trajectory(const cvt::Scene& base, const std::string& name, const Params& p,
                                    const std::vector<double>& x0, double dt, double t_tr, double t_end,
-                                   double sample_dt) {
+                                   double sample_dt, const ProgressFn& progress) {
   const cvt::Scene s = apply(base, name, p);
   Holder holder;
   load(holder, s, name);
@@ -195,11 +195,14 @@ std::vector<double> rom_trajectory(const cvt::Scene& base, const std::string& na
   auto x = state_from<N>(x0);
   if (!(dt > 0) || !(sample_dt > 0) || !(t_end > 0) || t_tr < 0)
     throw InputError("trajectory: need dt, sample_dt, t_end > 0 and t_transient >= 0");
-  advance(plant, s.method, x, dt, std::lround(t_tr / dt));
+  const long n_tr = std::lround(t_tr / dt);
   const long every = std::max(1L, std::lround(sample_dt / dt)), n = std::lround(t_end / dt);
+  if (progress) progress(0.0, static_cast<double>(n_tr + n));
+  advance(plant, s.method, x, dt, n_tr);
   std::vector<double> out;
   out.reserve(static_cast<std::size_t>(n / every + 1) * N);
   for (long i = 1; i <= n; ++i) {
+    if ((i & 4095) == 0 && progress) progress(static_cast<double>(n_tr + i), static_cast<double>(n_tr + n));
     advance(plant, s.method, x, dt, 1);
     if (i % every == 0)
       for (int k = 0; k < N; ++k) out.push_back(x(k));
@@ -212,14 +215,16 @@ std::vector<double> rom_trajectory(const cvt::Scene& base, const std::string& na
   template SpectrumResult rom_spectrum<N>(const cvt::Scene&, const std::string&, const Params&,                \
                                           const std::vector<double>&, const BenettinOptions&);                 \
   template std::vector<double> rom_trajectory<N>(const cvt::Scene&, const std::string&, const Params&,         \
-                                                 const std::vector<double>&, double, double, double, double);
+                                                 const std::vector<double>&, double, double, double, double,       \
+                                                 const ProgressFn&);
 
 // The state counts of the plants (AllRomPlants), each compiled in its own file.
 #define CVT_ROM_SCENES_EXTERN(N)                                                                                \
   extern template SpectrumResult rom_spectrum<N>(const cvt::Scene&, const std::string&, const Params&,         \
                                                  const std::vector<double>&, const BenettinOptions&);          \
   extern template std::vector<double> rom_trajectory<N>(const cvt::Scene&, const std::string&, const Params&,  \
-                                                        const std::vector<double>&, double, double, double, double);
+                                                        const std::vector<double>&, double, double, double, double, \
+                                                        const ProgressFn&);
 CVT_ROM_SCENES_EXTERN(6)
 CVT_ROM_SCENES_EXTERN(7)
 CVT_ROM_SCENES_EXTERN(9)

@@ -13,7 +13,7 @@ namespace {
 
 template <class Flow>
 std::vector<double> flow_trajectory(const Flow& sys, const std::vector<double>& x0, double dt, double t_tr,
-                                    double t_end, double sample_dt) {
+                                    double t_end, double sample_dt, const ProgressFn& progress) {
   constexpr int N = Flow::kStates;
   using V = Eigen::Matrix<double, N, 1>;
   if (static_cast<int>(x0.size()) != N) throw InputError("x0 needs " + std::to_string(N) + " values");
@@ -24,6 +24,7 @@ std::vector<double> flow_trajectory(const Flow& sys, const std::vector<double>& 
   std::vector<double> out;
   out.reserve(static_cast<std::size_t>(n / every + 1) * N);
   for (long s = 0; s < n_tr + n; ++s) {
+    if ((s & 16383) == 0 && progress) progress(static_cast<double>(s), static_cast<double>(n_tr + n));
     step_rk4(sys, x, dt);
     if (s >= n_tr && (s - n_tr + 1) % every == 0) {
       if (!x.allFinite()) throw std::runtime_error("trajectory became non-finite");
@@ -34,7 +35,8 @@ std::vector<double> flow_trajectory(const Flow& sys, const std::vector<double>& 
 }
 
 template <class Map>
-std::vector<double> map_trajectory(const Map& sys, const std::vector<double>& x0, double t_tr, double t_end) {
+std::vector<double> map_trajectory(const Map& sys, const std::vector<double>& x0, double t_tr, double t_end,
+                                   const ProgressFn& progress) {
   constexpr int N = Map::kStates;
   using V = Eigen::Matrix<double, N, 1>;
   if (static_cast<int>(x0.size()) != N) throw InputError("x0 needs " + std::to_string(N) + " values");
@@ -42,6 +44,7 @@ std::vector<double> map_trajectory(const Map& sys, const std::vector<double>& x0
   std::vector<double> out;
   const long n_tr = std::lround(t_tr), n = std::lround(t_end);
   for (long s = 0; s < n_tr + n; ++s) {
+    if ((s & 65535) == 0 && progress) progress(static_cast<double>(s), static_cast<double>(n_tr + n));
     sys.step(x, xn);
     x = xn;
     if (s >= n_tr)
@@ -144,8 +147,9 @@ std::vector<Model>& table() {
       s.spectrum = [](const Params& p, const std::vector<double>& x0, const BenettinOptions& o) {
         return lyapunov_flow(make_lorenz(p), to_vec<3>(x0), o);
       };
-      s.trajectory = [](const Params& p, const std::vector<double>& x0, double dt, double a, double b, double c) {
-        return flow_trajectory(make_lorenz(p), x0, dt, a, b, c);
+      s.trajectory_fn = [](const Params& p, const std::vector<double>& x0, double dt, double a, double b, double c,
+                           const ProgressFn& pr) {
+        return flow_trajectory(make_lorenz(p), x0, dt, a, b, c, pr);
       };
       v.push_back(s);
     }
@@ -164,8 +168,9 @@ std::vector<Model>& table() {
       s.spectrum = [](const Params& p, const std::vector<double>& x0, const BenettinOptions& o) {
         return lyapunov_flow(make_rossler(p), to_vec<3>(x0), o);
       };
-      s.trajectory = [](const Params& p, const std::vector<double>& x0, double dt, double a, double b, double c) {
-        return flow_trajectory(make_rossler(p), x0, dt, a, b, c);
+      s.trajectory_fn = [](const Params& p, const std::vector<double>& x0, double dt, double a, double b, double c,
+                           const ProgressFn& pr) {
+        return flow_trajectory(make_rossler(p), x0, dt, a, b, c, pr);
       };
       v.push_back(s);
     }
@@ -190,8 +195,9 @@ std::vector<Model>& table() {
       s.spectrum = [sb](const Params& p, const std::vector<double>& x0, const BenettinOptions& o) {
         return lyapunov_flow(make_oscillator(p, sb), to_vec<4>(x0), o);
       };
-      s.trajectory = [sb](const Params& p, const std::vector<double>& x0, double dt, double a, double b, double c) {
-        return flow_trajectory(make_oscillator(p, sb), x0, dt, a, b, c);
+      s.trajectory_fn = [sb](const Params& p, const std::vector<double>& x0, double dt, double a, double b, double c,
+                             const ProgressFn& pr) {
+        return flow_trajectory(make_oscillator(p, sb), x0, dt, a, b, c, pr);
       };
       v.push_back(s);
     }
@@ -210,8 +216,9 @@ std::vector<Model>& table() {
       s.spectrum = [](const Params& p, const std::vector<double>& x0, const BenettinOptions& o) {
         return lyapunov_map(make_henon(p), to_vec<2>(x0), o);
       };
-      s.trajectory = [](const Params& p, const std::vector<double>& x0, double, double a, double b, double) {
-        return map_trajectory(make_henon(p), x0, a, b);
+      s.trajectory_fn = [](const Params& p, const std::vector<double>& x0, double, double a, double b, double,
+                           const ProgressFn& pr) {
+        return map_trajectory(make_henon(p), x0, a, b, pr);
       };
       v.push_back(s);
     }
@@ -230,8 +237,9 @@ std::vector<Model>& table() {
       s.spectrum = [](const Params& p, const std::vector<double>& x0, const BenettinOptions& o) {
         return lyapunov_map(make_logistic(p), to_vec<1>(x0), o);
       };
-      s.trajectory = [](const Params& p, const std::vector<double>& x0, double, double a, double b, double) {
-        return map_trajectory(make_logistic(p), x0, a, b);
+      s.trajectory_fn = [](const Params& p, const std::vector<double>& x0, double, double a, double b, double,
+                           const ProgressFn& pr) {
+        return map_trajectory(make_logistic(p), x0, a, b, pr);
       };
       v.push_back(s);
     }

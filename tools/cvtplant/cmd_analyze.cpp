@@ -450,7 +450,13 @@ cvtcli::Action register_analyze(CLI::App& app) {
                        std::vector<std::string> inputs;
                        if (!has_model(a->scene)) inputs.push_back(a->scene);
                        std::FILE* f = cvtcli::open_output(a->out, "--out", inputs);
-                       const auto rows = s.trajectory(p, x0, dt, a->t_transient, a->t_end, a->sample_dt);
+                       std::vector<double> rows;
+                       {
+                         // No bar when the CSV goes to stdout: on a terminal the two would interleave.
+                         cvtcli::Progress progress("trajectory " + a->scene, f == stdout ? 0.0 : steps, "steps");
+                         rows = s.trajectory(p, x0, dt, a->t_transient, a->t_end, a->sample_dt,
+                                             [&](double done, double) { progress.update(done); });
+                       }
                        {
                          CsvWriter w(f);
                          w.text("t");
@@ -618,7 +624,9 @@ cvtcli::Action register_analyze(CLI::App& app) {
                                                cvtcli::fmt_count(frames) + " frames x " + std::to_string(sc.substeps) +
                                                    " substeps");
                          cvtcli::require_memory(frames * 8.0 * 16, *caps, cvtcli::fmt_count(frames) + " frames of 15 signals");
-                         auto f = rom_scene_figures(sc, loaded->name, *t_end, *dir);
+                         cvtcli::Progress progress("figures " + loaded->name, *t_end);
+                         auto f = rom_scene_figures(sc, loaded->name, *t_end, *dir,
+                                                    [&](double t, double) { progress.update(t); });
                          files.insert(files.end(), f.begin(), f.end());
                        } else if (!scene->empty()) {
                          const auto model = cvtcli::resolve_model(*scene);
@@ -626,7 +634,9 @@ cvtcli::Action register_analyze(CLI::App& app) {
                          const double steps = s.is_map ? *t_end : *t_end / s.defaults.dt;
                          cvtcli::require_steps(steps, *caps, s.is_map ? "--t-end iterations" : "--t-end / the scene's dt");
                          cvtcli::require_memory(steps * s.dim * 8.0, *caps, cvtcli::fmt_count(steps) + " states");
-                         auto f = model_figures(s, s.default_params, s.default_x0, s.defaults.dt, *t_end, *dir);
+                         cvtcli::Progress progress("figures " + *scene, steps, "steps");
+                         auto f = model_figures(s, s.default_params, s.default_x0, s.defaults.dt, *t_end, *dir,
+                                                [&](double done, double) { progress.update(done); });
                          files.insert(files.end(), f.begin(), f.end());
                        }
                        if (!sweep->empty()) {

@@ -30,14 +30,15 @@ std::string run_time_history_figure(const std::vector<double>& x, double dt, lon
 // step. Plus the phase portraits of the two lumps. Returns the PNG paths
 // (scene_time_history.png, scene_phase_lump1.png, scene_phase_lump2.png).
 std::vector<std::string> rom_scene_figures(const cvt::Scene& scene, const std::string& name, double t_end,
-                                           const std::string& out_dir);
+                                           const std::string& out_dir, const ProgressFn& progress = {});
 // "NAME: double, ros2 x 1 substeps, frame 1 ms": the figures' title.
 std::string rom_scene_title(const cvt::Scene& scene, const std::string& name);
 
 // Time histories (one panel per state, shared time axis) and phase portraits
 // of a model of the registry (seed Figs. 9/10 style).
+// `progress` as Model::trajectory's.
 std::vector<std::string> model_figures(const Model& s, const Params& p, const std::vector<double>& x0, double dt,
-                                       double t_end, const std::string& out_dir);
+                                       double t_end, const std::string& out_dir, const ProgressFn& progress = {});
 
 // Bifurcation diagram (peaks vs first parameter) and, for 2-D sweeps, the
 // largest-exponent map; for 1-D sweeps the exponents vs the parameter.

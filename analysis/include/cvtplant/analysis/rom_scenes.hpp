@@ -28,9 +28,9 @@ struct RomSeries {
 
 // Runs `scene` (named `name` in messages) for `t_end` seconds (<= 0: the
 // scene's own length). Throws InputError for an unknown signal or a scene the
-// plants cannot run.
+// plants cannot run. `progress`, if set, gets (simulated s, t_end).
 RomSeries rom_scene_series(const cvt::Scene& scene, const std::string& name, const std::vector<std::string>& signals,
-                           double t_end);
+                           double t_end, const ProgressFn& progress = {});
 
 // A scene as a model for `lyapunov`, `analyze trajectory` and sweeps: its
 // constant inputs and mu0 are the parameters. Throws InputError for a scene

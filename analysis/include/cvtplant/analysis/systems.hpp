@@ -69,6 +69,9 @@ using Params = std::map<std::string, double>;
 // trajectories the toolkit computes. Not a plant scene (cvt::Scene, inputs
 // over time for a frame-by-frame run): a ROM scene with constant inputs
 // becomes a model through rom_model() (rom_scenes.hpp).
+// Reports (work done, total work) to a progress display; empty: not called.
+using ProgressFn = std::function<void(double done, double total)>;
+
 struct Model {
   std::string name;
   std::string description;
@@ -80,10 +83,15 @@ struct Model {
   BenettinOptions defaults;  // dt, transient, warm-up, t_end that resolve the scene
   std::function<SpectrumResult(const Params&, const std::vector<double>& x0, const BenettinOptions&)> spectrum;
   // Samples the state every `sample_dt` (maps: every iteration) for t in
-  // (t_transient, t_transient + t_end]; rows of `dim` values.
+  // (t_transient, t_transient + t_end]; rows of `dim` values. `progress`,
+  // if set, is called every few thousand steps with (steps done, steps).
+  std::vector<double> trajectory(const Params& p, const std::vector<double>& x0, double dt, double t_transient,
+                                 double t_end, double sample_dt, const ProgressFn& progress = {}) const {
+    return trajectory_fn(p, x0, dt, t_transient, t_end, sample_dt, progress);
+  }
   std::function<std::vector<double>(const Params&, const std::vector<double>& x0, double dt, double t_transient,
-                                     double t_end, double sample_dt)>
-      trajectory;
+                                     double t_end, double sample_dt, const ProgressFn& progress)>
+      trajectory_fn;
 };
 
 const std::vector<Model>& models();
