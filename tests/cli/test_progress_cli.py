@@ -9,6 +9,7 @@ import re
 import select
 import subprocess
 import sys
+import tempfile
 import unittest
 
 CLI = sys.argv.pop(1) if len(sys.argv) > 1 else "cvtplant"
@@ -74,6 +75,28 @@ class Progress(unittest.TestCase):
                 # The data stay on stdout, untouched by the bar.
                 self.assertNotIn("\r", out)
                 self.assertTrue(out.strip())
+
+    def test_bar_on_the_trajectory_commands(self):
+        # Their data go to files; the bar is drawn while the model or the
+        # plant runs and cleared before anything else is printed.
+        with tempfile.TemporaryDirectory() as d:
+            for args, label in (
+                    (["analyze", "trajectory", "--scene", "lorenz", "--t-end", "2000", "--out", d + "/t.csv"],
+                     "trajectory lorenz"),
+                    (["analyze", "figures", "--scene", "seed-case1", "--t-end", "10", "--out-dir", d + "/f"],
+                     "figures seed-case1"),
+                    (["analyze", "figures", "--scene", "lorenz", "--t-end", "200", "--out-dir", d + "/g"],
+                     "figures lorenz")):
+                with self.subTest(label):
+                    code, _, tty = under_pty(args)
+                    self.assertEqual(code, 0, tty)
+                    bars = [m for m in BAR.finditer(tty)]
+                    self.assertTrue(bars, "no bar on the terminal: " + repr(tty[:400]))
+                    self.assertEqual(bars[0].group("label"), label)
+                    self.assertIn("\r\x1b[K", tty)
+                    r = subprocess.run([CLI, *args], capture_output=True, text=True, timeout=600, env=env())
+                    self.assertEqual(r.returncode, 0, r.stderr)
+                    self.assertEqual(r.stderr, "")
 
     def test_nothing_when_piped(self):
         for args, _ in COMMANDS:
