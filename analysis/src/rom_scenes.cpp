@@ -42,13 +42,14 @@ using namespace rom_detail;
 struct SignalDef {
   const char* name;
   double Outputs::*member;
+  const char* unit;  // as validate's rows name units; "-" for a ratio
 };
 constexpr SignalDef kSignals[] = {
-    {"F_ax", &Outputs::clamp_force_N},        {"torque_transmitted", &Outputs::torque_transmitted_Nm},
-    {"slip", &Outputs::slip},                 {"v_rel1", &Outputs::v_rel1_m_s},
-    {"v_rel2", &Outputs::v_rel2_m_s},         {"F1", &Outputs::friction1_N},
-    {"F2", &Outputs::friction2_N},            {"omega1", &Outputs::omega1_rad_s},
-    {"omega2", &Outputs::omega2_rad_s},       {"speed_ratio", &Outputs::speed_ratio},
+    {"F_ax", &Outputs::clamp_force_N, "N"},       {"torque_transmitted", &Outputs::torque_transmitted_Nm, "N m"},
+    {"slip", &Outputs::slip, "-"},                  {"v_rel1", &Outputs::v_rel1_m_s, "m/s"},
+    {"v_rel2", &Outputs::v_rel2_m_s, "m/s"},      {"F1", &Outputs::friction1_N, "N"},
+    {"F2", &Outputs::friction2_N, "N"},           {"omega1", &Outputs::omega1_rad_s, "rad/s"},
+    {"omega2", &Outputs::omega2_rad_s, "rad/s"},  {"speed_ratio", &Outputs::speed_ratio, "-"},
 };
 
 // fn(std::integral_constant<int, N>) for a plant of n states: the spectrum
@@ -79,7 +80,16 @@ Params rom_params_of(const cvt::Scene& s) {
 
 // The core states every plant has (rom_layout.hpp), sampled in SI units.
 constexpr const char* kStateSignals[] = {"x1", "xd1", "x2", "xd2"};
+constexpr const char* kStateSignalUnits[] = {"m", "m/s", "m", "m/s"};
 constexpr int kStateSignalIndex[] = {2, 3, 4, 5};
+
+std::string rom_signal_unit(const std::string& name) {
+  for (const auto& d : kSignals)
+    if (name == d.name) return d.unit;
+  for (int k = 0; k < 4; ++k)
+    if (name == kStateSignals[k]) return kStateSignalUnits[k];
+  throw InputError("unknown signal '" + name + "'");
+}
 
 const std::vector<std::string>& rom_signal_names() {
   static const std::vector<std::string> names = [] {

@@ -152,11 +152,14 @@ json classification_json(const Classification& r) {
 }
 
 // `analyze seed-section4`: one signal's summary (docs/analysis.md#seed-section4).
-json section4_json(const Section4Result& r) {
+// `unit`: the signal's, named beside its statistics (docs/cli.md#json-output).
+json section4_json(const Section4Result& r, const std::string& unit) {
   json j{{"signal", r.label},
          {"points", r.points},
          {"constant", r.constant},
-         {"stats", {{"mean", r.mean}, {"std", r.stddev}, {"min", r.min}, {"max", r.max}, {"peak_to_peak", r.max - r.min}}},
+         {"stats",
+          {{"unit", unit}, {"mean", r.mean}, {"std", r.stddev}, {"min", r.min}, {"max", r.max},
+           {"peak_to_peak", r.max - r.min}}},
          {"classification", r.classification},
          {"confidence", r.confidence},
          {"evidence", r.evidence},
@@ -725,7 +728,7 @@ cvtcli::Action register_analyze(CLI::App& app) {
                          so.on_stage = [&](int done, int) { progress.update(stages_before + done); };
                          const Section4Result r =
                              section4_pipeline(run.signal.at(n), so, a->scene + " " + n, a->out_dir + "/" + n);
-                         out["signals"].push_back(section4_json(r));
+                         out["signals"].push_back(section4_json(r, rom_signal_unit(n)));
                          stages_before += 5;
                        }
                        progress.finish();

@@ -17,6 +17,9 @@ namespace cvt::analysis {
 
 // Signals that rom_scene_series can sample (names as in `cvtplant run --csv`).
 const std::vector<std::string>& rom_signal_names();
+// A signal's SI unit as the command line's JSON names it ("N", "N m", "m/s",
+// "rad/s", "m"; "-" for slip and ratios). InputError for an unknown name.
+std::string rom_signal_unit(const std::string& name);
 
 struct RomSeries {
   std::string scene;
