@@ -156,6 +156,10 @@ class Grid {
     // At most 2^20 cells per axis keeps the cell key in 60 bits; a coarser
     // cell than eps only adds candidates.
     side_ = std::max(eps, span / static_cast<double>(1 << 20));
+    // A series constant on the grid's axes with eps = 0 (the radius that a
+    // target rate gives when every sampled distance is 0): one cell holds
+    // every point, and a zero side would divide 0 by 0.
+    if (!(side_ > 0)) side_ = 1.0;
     for (int d = 0; d < g_; ++d) cells_[d] = cell_of(hi_[d], d) + 1;
     std::vector<std::pair<std::uint64_t, std::uint32_t>> order(e.n);
     for (std::size_t i = 0; i < e.n; ++i) order[i] = {key_of(e.row(i)), static_cast<std::uint32_t>(i)};

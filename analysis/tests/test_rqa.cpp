@@ -140,6 +140,18 @@ TEST_CASE("grid RQA equals the k-d tree method and the stored matrix (m = 1..6, 
         }
 }
 
+TEST_CASE("grid RQA of a constant series: every pair recurs at eps 0, as by the k-d tree and brute force") {
+  const Embedding e = delay_embed(std::vector<double>(600, 2.5), 3, 4);
+  RqaOptions o;
+  o.target_rr = 0.05;  // every sampled distance is 0, so the radius is 0
+  o.theiler = 1;
+  const RqaResult g = rqa(e, o);
+  same(g, rqa_kdtree(e, o));
+  same(g, rqa_naive(e, o));
+  CHECK(g.eps == 0.0);
+  CHECK(g.rr == doctest::Approx(1.0));
+}
+
 TEST_CASE("RQA reports progress from 0 to 1, never backwards") {
   RqaOptions o;
   o.eps = 0.2;

@@ -232,6 +232,8 @@ class Adaptive(unittest.TestCase):
         r = run("run", "--scene", "seed-case1", "--t-end", "2", "--solver", "adaptive", "--max-steps", "20")
         self.assertEqual(r.returncode, 1)
         self.assertIn("--max-steps", r.stderr)
+        # No summary of a final frame the run never reached.
+        self.assertNotIn("final", r.stdout)
 
     def test_refusals(self):
         cases = [

@@ -458,14 +458,13 @@ TEST_CASE_TEMPLATE("wedging: the right-hand side from the Jacobian's contact is 
       typename R::State x = rom.initial_state(x0);
       x(LL::kRhoDot) = T(rhod);
       typename R::State f1, f2;
-      typename R::Jacobian J1, J2;
+      typename R::Jacobian J2;
       rom.derivative(x, f1);
-      rom.jacobian(x, J1);
       rom.jacobian_and_derivative(x, J2, f2);
+      // The right-hand side only: both Jacobians come from jacobian_wedge
+      // (compared with the dual-number Jacobian above).
       bool same = true;
       for (int i = 0; i < R::kStates; ++i) same = same && std::memcmp(&f1(i), &f2(i), sizeof(T)) == 0;
-      for (int i = 0; i < R::kStates * R::kStates; ++i)
-        same = same && std::memcmp(J1.data() + i, J2.data() + i, sizeof(T)) == 0;
       CAPTURE(rhod);
       CHECK(same);
     }

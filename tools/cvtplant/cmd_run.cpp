@@ -294,6 +294,14 @@ cvtcli::Action register_run(CLI::App& app) {
                                          })
                  : cvtcli::with_scene_simulator(s, s.scalar, cvt::sim_config_of(s), runner);
     cvtcli::close_output(csv);
+    // An adaptive run stopped between frames has no final frame to summarise:
+    // the CSV keeps the frames written, the error says where it stopped.
+    if (adaptive && ad.status == cvt::AdaptiveStatus::step_cap)
+      throw cvtcli::RunError{"the adaptive solver reached the cap of " + cvtcli::fmt_count(o.caps.max_steps) +
+                             " steps at t = " + std::to_string(ad.t_s) + " s; raise it with --max-steps"};
+    if (adaptive && ad.status == cvt::AdaptiveStatus::step_too_small)
+      throw cvtcli::RunError{"the adaptive solver's step fell below 1e-14 of the time at t = " +
+                             std::to_string(ad.t_s) + " s: the tolerances cannot be met in double"};
     // With the CSV on stdout the text summary goes to stderr: stdout holds data only.
     std::FILE* info = csv == stdout ? stderr : stdout;
 
@@ -372,12 +380,6 @@ cvtcli::Action register_run(CLI::App& app) {
       else
         std::fprintf(info, "  plant %.0f ns/frame (%.3f s wall)\n", plant_ns, r.wall_s);
     }
-    if (adaptive && ad.status == cvt::AdaptiveStatus::step_cap)
-      throw cvtcli::RunError{"the adaptive solver reached the cap of " + cvtcli::fmt_count(o.caps.max_steps) +
-                             " steps at t = " + std::to_string(ad.t_s) + " s; raise it with --max-steps"};
-    if (adaptive && ad.status == cvt::AdaptiveStatus::step_too_small)
-      throw cvtcli::RunError{"the adaptive solver's step fell below 1e-14 of the time at t = " +
-                             std::to_string(ad.t_s) + " s: the tolerances cannot be met in double"};
     if (r.fault != cvt::RomFault::none) {
       char buf[96];
       std::snprintf(buf, sizeof buf, " at t = %g s (frame %ld)", r.t_end_s, r.frames);

@@ -53,8 +53,8 @@ double radius_for_rr(const Embedding& e, double rr, int theiler);
 // 8 (m + 6) bytes per point besides the embedding.
 RqaResult rqa(const Embedding& e, const RqaOptions& opt);
 // The same measures from a k-d tree radius search over both triangles, with
-// each row sorted for its vertical runs: the earlier streaming method, kept
-// as a reference for the tests and the benchmark.
+// each row sorted for its vertical runs: the reference method of the tests
+// and the benchmark.
 RqaResult rqa_kdtree(const Embedding& e, const RqaOptions& opt);
 // O(N^2)-time, O(N)-memory brute force with the same conventions: the
 // reference for the tests and the benchmark.

@@ -85,7 +85,7 @@ struct RomParams {
   // docs/rom.md#wrap-tension: the driver wrap's mean tension exceeds the
   // driven wrap's by eta times the strands' tension difference; 0 is the
   // no-load thrust ratio (the ratio holds under torque).
-  double wrap_tension_share = 0.0;             // eta in [0, 1]
+  double wrap_tension_share = 0.0;             // eta in [0, 1)
 };
 
 // The fastest driver whose link passing an integrator step of `step_s`
