@@ -304,6 +304,7 @@ nlohmann::json start_json(const ModelOptions& o, const cvt::mbd::RunStats& st) {
     const cvt::mbd::HoldSteadiness h = cvt::mbd::hold_steadiness(st.hold_samples, window);
     j["hold_window_s"] = h.window_s;
     j["omega2_range_rel"] = h.omega2_range_rel;
+    j["holding_torque_mean_Nm"] = h.holding_torque_mean_Nm;
     j["holding_torque_change_rel"] = h.holding_torque_change_rel;
     j["F_ax1_change_rel"] = h.F_ax_change_rel[0];
     j["F_ax2_change_rel"] = h.F_ax_change_rel[1];
