@@ -6,7 +6,9 @@
 #include <limits>
 #include <stdexcept>
 
+#include "cvtplant/autodiff/dual.hpp"
 #include "cvtplant/physics/seed.hpp"
+#include "cvtplant/plant/rom_formulas.hpp"
 
 namespace cvt::mbd {
 
@@ -23,7 +25,7 @@ constexpr double kRunawaySpeed_rad_s = 1e4;
 
 }  // namespace
 
-double ForceProfile::at(double t_s) const {
+double TimeProfile::at(double t_s) const {
   if (points.empty()) return 0.0;
   if (t_s <= points.front().first) return points.front().second;
   if (t_s >= points.back().first) return points.back().second;
@@ -48,9 +50,27 @@ ChainModel::ChainModel(const MbdParams& p) : p_(p), geo_(p.r1_m, p.r2_m, p.cente
   require(p.bolt_stiffness_N_m > 0 && p.beta0_rad > 0 && p.beta0_rad < 0.5 * kPi, "K_b > 0, 0 < beta0 < 90 deg");
   require(p.link_length_m * p.links < 2.0 * geo_.pitch_line_m, "the links must fit the pitch line");
   require(p.settle_s >= 0 && p.settle_drag_Ns_m >= 0, "settle time and drag >= 0");
+  auto valid_profile = [](const TimeProfile& f) {
+    for (std::size_t k = 0; k < f.points.size(); ++k)
+      if (!std::isfinite(f.points[k].first) || !std::isfinite(f.points[k].second) ||
+          (k > 0 && !(f.points[k].first > f.points[k - 1].first)))
+        return false;
+    return true;
+  };
+  require(!p.tau_in_Nm.empty() && valid_profile(p.tau_in_Nm) && !p.tau_load_Nm.empty() && valid_profile(p.tau_load_Nm),
+          "torque profiles: finite values at increasing times");
+  const RoadLoad& road = p.road;
+  require(std::isfinite(road.T0_Nm) && road.T0_Nm >= 0 && std::isfinite(road.cv_Nms_rad) && road.cv_Nms_rad >= 0 &&
+              std::isfinite(road.ca_Nms2_rad2) && road.ca_Nms2_rad2 >= 0 && std::isfinite(road.w_eps_rad_s) &&
+              road.w_eps_rad_s > 0,
+          "road load: T0, c_v, c_a >= 0, w_eps > 0");
+  if (p.start.active)
+    require(std::isfinite(p.start.omega1_rad_s) && std::isfinite(p.start.omega2_rad_s) && p.start.spinup_s > 0 &&
+                p.start.hold_s >= 0 && std::isfinite(p.start.spinup_s + p.start.hold_s),
+            "start at speed: finite speeds, spin-up time > 0, hold time >= 0");
   if (p.sheaves == SheaveMode::clamped) {
     require(!p.clamp1_N.empty(), "clamped sheaves need the driver clamping force");
-    for (const ForceProfile* f : {&p.clamp1_N, &p.clamp2_N})
+    for (const TimeProfile* f : {&p.clamp1_N, &p.clamp2_N})
       for (std::size_t k = 0; k < f->points.size(); ++k)
         require(f->points[k].second > 0 && (k == 0 || f->points[k].first > f->points[k - 1].first),
                 "clamping forces > 0 at increasing times");
@@ -62,6 +82,7 @@ ChainModel::ChainModel(const MbdParams& p) : p_(p), geo_(p.r1_m, p.r2_m, p.cente
   ledger_base_ = sheave_base_ + (clamped() ? 4 : 0);
   n_ = ledger_base_ + 5;
   inertia_ = p.link_inertia();
+  inv_w_eps_ = 1.0 / p.road.w_eps_rad_s;  // as the real-time plant (rom_constants.hpp)
   thrust_ratio_ = geo_.wrap_rad[1] / geo_.wrap_rad[0];
   force_.assign(3 * static_cast<std::size_t>(n_links_), 0.0);
   cos_.assign(static_cast<std::size_t>(n_links_), 1.0);
@@ -168,12 +189,62 @@ void ChainModel::reset_ledger(double* y) const {
   for (int k = 0; k < 5; ++k) y[ledger(k)] = 0.0;
 }
 
-double ChainModel::applied_torque(int j, double chain_moment) const {
-  // The torque the drive applies to pulley j: the load case's, or whatever
-  // holds the pulley at its imposed speed (J w' = 0).
-  if (phase_ == Phase::settle) return j == 0 ? -chain_moment : chain_moment;
-  if (j == 0) return p_.hold1.active ? -chain_moment : p_.tau_in_Nm;
-  return p_.hold2.active ? chain_moment : p_.tau_load_Nm;
+// docs/rom.md#road-load: the real-time plant's law, the same function.
+double ChainModel::load_torque(double t_s, double omega2_rad_s, double* slope) const {
+  const double tau = p_.tau_load_Nm.at(t_s);
+  const RoadLoad& r = p_.road;
+  if (!r.active()) {
+    if (slope != nullptr) *slope = 0.0;
+    return tau;
+  }
+  if (slope != nullptr) {
+    using D1 = Dual<double, 1>;
+    *slope = road_load_torque<D1>(D1(tau), D1(r.T0_Nm), D1(inv_w_eps_), D1(r.cv_Nms_rad), D1(r.ca_Nms2_rad2),
+                                  D1::variable(omega2_rad_s, 0))
+                 .d[0];
+  }
+  return road_load_torque<double>(tau, r.T0_Nm, inv_w_eps_, r.cv_Nms_rad, r.ca_Nms2_rad2, omega2_rad_s);
+}
+
+// docs/mbd.md#start-at-speed: omega_j x (3 x^2 - 2 x^3), x the fraction of the
+// spin-up gone: zero acceleration at both ends.
+double ChainModel::spinup_speed(int j, double t_s, double* rate) const {
+  const double w0 = j == 0 ? p_.start.omega1_rad_s : p_.start.omega2_rad_s;
+  const double T = p_.start.spinup_s;
+  const double x = std::clamp((t_s - spinup_start_s()) / T, 0.0, 1.0);
+  if (rate != nullptr) *rate = w0 * 6.0 * x * (1.0 - x) / T;
+  return w0 * x * x * (3.0 - 2.0 * x);
+}
+
+ChainModel::Drive ChainModel::drive(int j, double t_s, double omega_rad_s) const {
+  Drive d;  // held at a constant speed
+  switch (phase_) {
+    case Phase::settle: break;
+    case Phase::spinup: spinup_speed(j, t_s, &d.rate); break;
+    case Phase::hold:
+      if (j == 1) {
+        d.held = false;
+        d.torque_Nm = load_torque(0.0, omega_rad_s, &d.slope);
+      }
+      break;
+    case Phase::run:
+      if (j == 0 && !p_.hold1.active) {
+        d.held = false;
+        d.torque_Nm = p_.tau_in_Nm.at(t_s);
+      } else if (j == 1 && !p_.hold2.active) {
+        d.held = false;
+        d.torque_Nm = load_torque(t_s, omega_rad_s, &d.slope);
+      }
+      break;
+  }
+  return d;
+}
+
+double ChainModel::applied_torque(int j, const Drive& d, double chain_moment) const {
+  // A free pulley: the load case's torque. A held one: whatever gives it the
+  // imposed acceleration, from J1 w1' = tau_in + M1 and J2 w2' = M2 - tau_load.
+  if (!d.held) return d.torque_Nm;
+  return j == 0 ? p_.J1_kgm2 * d.rate - chain_moment : chain_moment - p_.J2_kgm2 * d.rate;
 }
 
 // docs/mbd.md#equations-of-motion
@@ -241,12 +312,13 @@ bool ChainModel::rhs(double t_s, const double* y, double* dydt) const {
     d[4] = fy * inv_m;
     d[5] = force_[3 * i + 2] * inv_I;
   }
-  const double tau_in = applied_torque(0, moment[0]);
-  const double tau_load = applied_torque(1, moment[1]);
+  const Drive d1 = drive(0, t_s, omega[0]), d2 = drive(1, t_s, omega[1]);
+  const double tau_in = applied_torque(0, d1, moment[0]);
+  const double tau_load = applied_torque(1, d2, moment[1]);
   dydt[pulley_angle(0)] = omega[0];
   dydt[pulley_angle(1)] = omega[1];
-  dydt[pulley_speed(0)] = (settling || p_.hold1.active) ? 0.0 : (tau_in + moment[0]) / p_.J1_kgm2;
-  dydt[pulley_speed(1)] = (settling || p_.hold2.active) ? 0.0 : (moment[1] - tau_load) / p_.J2_kgm2;
+  dydt[pulley_speed(0)] = d1.held ? d1.rate : (tau_in + moment[0]) / p_.J1_kgm2;
+  dydt[pulley_speed(1)] = d2.held ? d2.rate : (moment[1] - tau_load) / p_.J2_kgm2;
   double p_clamp = 0;
   if (clamped()) {
     // docs/mbd.md#clamped-sheaves: m_s s'' = F_ax - F_clamp(t) - c_s s'
@@ -384,11 +456,13 @@ void ChainModel::jacobian(double t_s, const double* y, double* values) const {
   using D8 = Dual<double, 8>;
   double moment[2] = {0, 0};
   for (int j = 0; j < 2; ++j) {
-    const bool pulley_free = !settling && !(j == 0 ? p_.hold1.active : p_.hold2.active);
-    // Power of the drive on pulley j, booked in ledger 0 (driver) or 1 (driven):
-    // free pulleys run at a constant torque, held ones at a constant speed.
-    const int power_row = ledger(j);
     const double omega_j = y[pulley_speed(j)];
+    const Drive dj = drive(j, t_s, omega_j);
+    const bool pulley_free = !dj.held;
+    // Power of the drive on pulley j, booked in ledger 0 (driver) or 1 (driven):
+    // free pulleys run under a torque of time and speed, held ones at an
+    // imposed speed.
+    const int power_row = ledger(j);
     const double sign_j = j == 0 ? -1.0 : 1.0;  // tau_in = -M1, tau_load = +M2 when held
     const double inv_J = 1.0 / (j == 0 ? p_.J1_kgm2 : p_.J2_kgm2);
     const D8 w = D8::variable(y[pulley_speed(j)], 6);
@@ -411,10 +485,15 @@ void ChainModel::jacobian(double t_s, const double* y, double* values) const {
           at(sheave_rate(j), col) += cf.bolt_force_N.d[v] / p_.sheave_mass_kg;
       }
     }
+    if (pulley_free) {
+      // The load's own slope (road load): J2 w2' = M2 - tau_load(w2).
+      at(pulley_speed(j), pulley_speed(j)) += (j == 0 ? 1.0 : -1.0) * dj.slope * inv_J;
+    }
     if (!settling) {
-      // d(tau omega)/d omega: the constant torque, or the holding torque.
-      const double torque = pulley_free ? (j == 0 ? p_.tau_in_Nm : p_.tau_load_Nm) : sign_j * moment[j];
-      at(power_row, pulley_speed(j)) += torque;
+      // d(tau omega)/d omega = tau + omega dtau/domega: the drive's torque (a
+      // held pulley's: the holding torque, its slope through M above).
+      const double torque = applied_torque(j, dj, moment[j]);
+      at(power_row, pulley_speed(j)) += pulley_free ? torque + omega_j * dj.slope : torque;
     }
     if (clamped()) {
       const double rate = y[sheave_rate(j)];
@@ -485,8 +564,8 @@ Sample ChainModel::sample(double t_s, const double* y) const {
   }
   out.tension_tight_N = t_count[0] > 0 ? t_sum[0] / t_count[0] : kNaN;
   out.tension_slack_N = t_count[1] > 0 ? t_sum[1] / t_count[1] : kNaN;
-  out.tau_in_Nm = applied_torque(0, out.chain_torque_Nm[0]);
-  out.tau_load_Nm = applied_torque(1, out.chain_torque_Nm[1]);
+  out.tau_in_Nm = applied_torque(0, drive(0, t_s, omega[0]), out.chain_torque_Nm[0]);
+  out.tau_load_Nm = applied_torque(1, drive(1, t_s, omega[1]), out.chain_torque_Nm[1]);
   if (clamped())
     for (int j = 0; j < 2; ++j) {
       const double rate = y[sheave_rate(j)];

@@ -39,6 +39,79 @@ double ledger_scale_J(const Sample& s, double energy0_J, double floor_J) {
                    std::fabs(s.D_friction_J), std::fabs(s.D_damping_J), std::fabs(s.W_clamp_J)});
 }
 
+namespace {
+
+// docs/mbd.md#start-at-speed: the spin-up, both speeds imposed, then the hold,
+// the driver held and the driven pulley free under the load at t = 0, sampled
+// every millisecond for the report (RunStats::hold_samples). Fixed work like
+// the settle, at the settle's tolerance.
+void start_at_speed(ChainModel& model, std::vector<double>& y, const RunOptions& opt, RunStats& stats) {
+  const StartAtSpeed& st = model.params().start;
+  auto check = [&](double t, const char* phase) {
+    const std::string bad = model.state_problem(y.data());
+    if (!bad.empty()) throw RunFailure(t, std::string(phase) + ": " + bad);
+  };
+  model.set_phase(ChainModel::Phase::spinup);
+  {
+    auto spin = detail::make_bdf(model, model.spinup_start_s(), y.data(), opt.settle_rtol, kSettleStepCap);
+    spin->advance_to(model.hold_start_s(), y.data());
+    stats.start_steps += spin->counters().steps;
+  }
+  // The ramp's end, exactly (the integrated speeds are within the tolerance of it).
+  y[static_cast<std::size_t>(model.pulley_speed(0))] = st.omega1_rad_s;
+  y[static_cast<std::size_t>(model.pulley_speed(1))] = st.omega2_rad_s;
+  check(model.hold_start_s(), "spin-up to speed");
+  model.set_phase(ChainModel::Phase::hold);
+  auto hold = detail::make_bdf(model, model.hold_start_s(), y.data(), opt.settle_rtol, kSettleStepCap);
+  const long long n = std::max<long long>(1, std::llround(st.hold_s / 1e-3));
+  stats.hold_samples.clear();
+  stats.hold_samples.push_back(model.sample(model.hold_start_s(), y.data()));
+  for (long long k = 1; k <= n; ++k) {
+    // CVODE steps past each time and interpolates: sampling does not move the steps.
+    const double t = k == n ? 0.0 : model.hold_start_s() + static_cast<double>(k) * 1e-3;
+    hold->advance_to(t, y.data());
+    check(t, "holding at speed");
+    stats.hold_samples.push_back(model.sample(t, y.data()));
+  }
+  stats.start_steps += hold->counters().steps;
+}
+
+}  // namespace
+
+HoldSteadiness hold_steadiness(const std::vector<Sample>& hold, double window_s) {
+  if (hold.empty() || !(window_s > 0) || hold.front().t_s > -window_s + 1e-9 || hold.back().t_s < -1e-9)
+    throw std::invalid_argument("hold samples do not cover the window");
+  HoldSteadiness h;
+  h.window_s = window_s;
+  double lo = INFINITY, hi = -INFINITY;
+  double sum[2][4] = {};  // halves x (omega2, torque, F_ax1, F_ax2)
+  int count[2] = {0, 0};
+  for (const Sample& s : hold) {
+    if (s.t_s < -window_s - 1e-9) continue;
+    lo = std::min(lo, s.omega_rad_s[1]);
+    hi = std::max(hi, s.omega_rad_s[1]);
+    const int half = s.t_s < -0.5 * window_s ? 0 : 1;
+    const double v[4] = {s.omega_rad_s[1], s.tau_in_Nm, s.F_ax_N[0], s.F_ax_N[1]};
+    for (int k = 0; k < 4; ++k) sum[half][k] += v[k];
+    ++count[half];
+  }
+  double mean[2][4], all[4];
+  for (int k = 0; k < 4; ++k) {
+    for (int half = 0; half < 2; ++half) mean[half][k] = sum[half][k] / std::max(1, count[half]);
+    all[k] = (sum[0][k] + sum[1][k]) / std::max(1, count[0] + count[1]);
+  }
+  auto change = [&](int k) { return std::fabs(mean[1][k] - mean[0][k]) / std::max(1e-300, std::fabs(all[k])); };
+  h.omega2_mean_rad_s = all[0];
+  h.omega2_range_rel = (hi - lo) / std::max(1e-300, std::fabs(all[0]));
+  h.holding_torque_mean_Nm = all[1];
+  h.holding_torque_change_rel = change(1);
+  for (int j = 0; j < 2; ++j) {
+    h.F_ax_mean_N[j] = all[2 + j];
+    h.F_ax_change_rel[j] = change(2 + j);
+  }
+  return h;
+}
+
 RunStats simulate(const MbdParams& params, const RunOptions& opt, const SampleSink& on_sample,
                   const ProgressSink& on_progress) {
   if (!(opt.t_end_s > 0) || !std::isfinite(opt.t_end_s)) throw std::invalid_argument("t_end must be > 0");
@@ -63,11 +136,12 @@ RunStats simulate(const MbdParams& params, const RunOptions& opt, const SampleSi
   if (params.settle_s > 0) {
     model.set_phase(ChainModel::Phase::settle);
     // The settle is fixed work (a few thousand steps), outside the user's cap.
-    auto settle = detail::make_bdf(model, -params.settle_s, y.data(), opt.settle_rtol, kSettleStepCap);
-    settle->advance_to(0.0, y.data());
+    auto settle = detail::make_bdf(model, model.settle_start_s(), y.data(), opt.settle_rtol, kSettleStepCap);
+    settle->advance_to(model.spinup_start_s(), y.data());
     const std::string bad = model.state_problem(y.data());
-    if (!bad.empty()) throw RunFailure(0.0, "settling: " + bad);
+    if (!bad.empty()) throw RunFailure(model.spinup_start_s(), "settling: " + bad);
   }
+  if (params.start.active) start_at_speed(model, y, opt, stats);
   const auto t_released = clock::now();
   stats.settle_wall_s = std::chrono::duration<double>(t_released - t_start).count();
   model.set_phase(ChainModel::Phase::run);

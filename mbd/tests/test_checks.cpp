@@ -24,7 +24,7 @@ TEST_CASE("rigid limit: the mean speed ratio of a polygon chain, asin(L/2r1)/asi
   p.bolt_stiffness_N_m *= 10.0;
   p.J2_kgm2 = 0.01;
   p.hold1 = {true, 10.0};
-  p.tau_load_Nm = 0.0;
+  p.tau_load_Nm = TimeProfile::constant(0.0);
   RunOptions o;
   o.t_end_s = 1.5;
   o.sample_s = 1e-3;
@@ -128,8 +128,8 @@ TEST_CASE("static axial force from the bolt springs at the settled pretension: T
   // radial load per unit angle is the tension T (joints between two links of
   // the wrap), carried by 2 F_b tan(beta0) per bolt: sum F_b = T theta / (2 tan(beta0)).
   MbdParams p = seed_case(1);
-  p.tau_in_Nm = 0;
-  p.tau_load_Nm = 0;
+  p.tau_in_Nm = TimeProfile::constant(0.0);
+  p.tau_load_Nm = TimeProfile::constant(0.0);
   p.hold1 = {true, 0.0};
   p.hold2 = {true, 0.0};
   RunOptions o;

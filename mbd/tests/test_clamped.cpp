@@ -11,7 +11,7 @@ using namespace cvt::mbd;
 using namespace cvt::mbd::testing;
 
 TEST_CASE("clamping profile: piecewise linear through its points, held before the first and after the last") {
-  ForceProfile f;
+  TimeProfile f;
   f.points = {{0.1, 3300.0}, {0.3, 4300.0}, {0.5, 3800.0}};
   CHECK(f.at(0.0) == 3300.0);
   CHECK(f.at(0.1) == 3300.0);

@@ -182,6 +182,12 @@ class Schema(unittest.TestCase):
         self.assertIn("sample_s", j)
         self.assertIn("wall_s", j)
 
+    def test_mbd_start_at_speed(self):
+        # A slow start at speed (the spin-up and hold are fixed work, cheaper at low speed).
+        j = self.check(run_json("mbd", "--case", "1", "--t-end", "0.01", "--omega0", "20,13.3", "--road-load",
+                                "1,0.1,0", "--tau-in", "0:10,0.01:12"))
+        self.assertIn("holding_torque_mean_Nm", j["start_at_speed"])
+
     def test_mbd_figures(self):
         out = os.path.join(self.tmp.name, "mf")
         j = self.check(run_json("mbd", "figures", "--out-dir", out, "--t-end", "0.02"))

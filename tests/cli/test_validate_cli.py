@@ -2,6 +2,7 @@
 """`cvtplant validate` and `cvtplant calibrate` as a user drives them, on a
 shortened span (docs/validation.md): the table, the overlays, the reference
 cache, the parameter file, and bad input."""
+import csv
 import json
 import os
 import re
@@ -78,17 +79,69 @@ class Validate(unittest.TestCase):
         self.assertFalse(json.loads(r.stdout)["scenes"][0]["reference"]["from_cache"])
 
     def test_scenes_the_reference_cannot_run_are_named_with_the_reason(self):
-        r = run("validate", "--scene", "tip-in", "--out-dir", self.out, "--json")
+        r = run("validate", "--scene", "oscillator-coulomb", "--out-dir", self.out, "--json")
         self.assertEqual(r.returncode, 0, r.stderr)
         s = json.loads(r.stdout)["scenes"][0]
         self.assertEqual(s["status"], "not run")
-        self.assertIn("road load", s["reason"])
+        self.assertIn("held pulleys", s["reason"])
+        with tempfile.TemporaryDirectory() as d:
+            scene = os.path.join(d, "wobble.toml")
+            with open(scene, "w") as f:
+                f.write('name = "wobble"\nbase = "seed-case1"\n[inputs]\n'
+                        'tau_in = { kind = "sine", offset = 100.0, amplitude = 10.0, freq_hz = 2.0 }\n')
+            r = run("validate", "--scene", scene, "--out-dir", d, "--json")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            s = json.loads(r.stdout)["scenes"][0]
+            self.assertEqual(s["status"], "not run")
+            self.assertIn("sine torque profile", s["reason"])
+
+    def test_fixed_sheaves_are_another_reference_run(self):
+        r = run("validate", "--scene", "seed-case1", "--t-end", "0.05", "--sheaves", "fixed", "--out-dir", self.out,
+                "--json", "--no-figures")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        j = json.loads(r.stdout)
+        self.assertEqual(j["sheaves"], "fixed")
+        (s,) = j["scenes"]
+        self.assertFalse(s["reference"]["from_cache"])
+        self.assertEqual(s["sheave_at_stop_s"], {"driver": None, "driven": None})
+        # The seed's fixed pulleys carry the settled pretension's axial force
+        # (2.99 kN, docs/mbd.md#open-choices), not the scene's 3.3 kN clamping.
+        fax = next(e for e in s["errors"] if e["quantity"] == "F_ax1 (mean)")
+        self.assertGreater(fax["reference_ss"], 2500.0)
+        self.assertLess(fax["reference_ss"], 3200.0)
 
     def test_text_table(self):
         r = run("validate", "--scene", "seed-case1", *SHORT, "--out-dir", self.out, "--no-figures")
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertIn("| omega1 | rad/s |", r.stdout)
         self.assertIn("time to gross slip", r.stdout)
+
+
+class AtSpeed(unittest.TestCase):
+    def test_tip_in_runs_from_its_start_at_speed(self):
+        # tip-in: road load, a torque ramp (later than 50 ms) and a start at
+        # 150 / 100 rad/s (docs/mbd.md#start-at-speed); 50 ms after the release.
+        with tempfile.TemporaryDirectory() as d:
+            r = run("validate", "--scene", "tip-in", "--t-end", "0.05", "--out-dir", d, "--json", "--no-figures")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            (s,) = json.loads(r.stdout)["scenes"]
+            self.assertEqual(s["status"], "ok", s)
+            self.assertFalse(s["reference"]["from_cache"])
+            self.assertIsNone(s["reference"]["failure"])
+            self.assertLessEqual(s["reference"]["energy_residual_rel"], 1e-6)
+            self.assertEqual(len(s["errors"]), 6)
+            with open(s["csv"]) as f:
+                rows = list(csv.DictReader(f))
+            self.assertEqual(len(rows), 51)
+            first = rows[0]
+            self.assertEqual(float(first["omega1_plant"]), 150.0)
+            self.assertEqual(float(first["omega1_ref"]), 150.0)
+            # The reference's driven pulley finds its own speed in the hold:
+            # near the plant's 100 rad/s.
+            self.assertAlmostEqual(float(first["omega2_ref"]) / 100.0, 1.0, delta=0.1)
+            # Running, not starting: both driven pulleys stay near their speeds.
+            for row in rows:
+                self.assertAlmostEqual(float(row["omega2_ref"]) / float(first["omega2_ref"]), 1.0, delta=0.02)
 
 
 TOML = r"^(\w+) = ([-+0-9.eE]+)"
@@ -145,9 +198,12 @@ class BadInput(unittest.TestCase):
             self.check(["validate", "--rtol", "1", "--out-dir", d], "--rtol")
             self.check(["validate", "--scene", "seed-case1", "--max-t-end", "1", "--out-dir", d], "--max-t-end")
             self.check(["validate", "--scene", "seed-case1", "--out-dir", "/proc/no/such/dir"], "--out-dir")
+            self.check(["validate", "--scene", "seed-case1", "--sheaves", "floating", "--out-dir", d], "--sheaves")
+            self.check(["validate", "--scene-dir", os.path.join(d, "missing"), "--out-dir", d], "--scene-dir")
+            self.check(["calibrate", "--sheaves", "loose", "--out-dir", d], "--sheaves")
             self.check(["calibrate", "--fit", "k9", "--out-dir", d], "--fit: unknown parameter")
             self.check(["calibrate", "--fit", "k1_N_m,k1_N_m", "--out-dir", d], "twice")
-            self.check(["calibrate", "--scene", "tip-in", "--out-dir", d], "road load")
+            self.check(["calibrate", "--scene", "oscillator-coulomb", "--out-dir", d], "held pulleys")
             self.check(["calibrate", "--every", "0", "--out-dir", d], "--every")
             self.check(["calibrate", "--function", "1apply", "--out-dir", d], "--function")
             self.check(["calibrate", "--function", "apply;", "--out-dir", d], "--function")

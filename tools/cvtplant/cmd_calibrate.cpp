@@ -66,6 +66,7 @@ struct Options {
   std::string function = "apply";  // the header's function, cvt::calibrated::NAME(RomParams&)
   std::string out_dir = "validation";
   std::string start;  // parameter file to start from
+  std::string sheaves = "clamped";  // the reference's sheave mode
   double t_end_s = 0;
   double rtol = 5e-7;
   long long max_steps = 20000000;
@@ -170,6 +171,7 @@ std::string command_line(const Options& o) {
   std::ostringstream s;
   s << "cvtplant calibrate --scene " << o.scenes << " --fit " << o.fit;
   if (!o.start.empty()) s << " --start " << o.start;
+  if (o.sheaves != "clamped") s << " --sheaves " << o.sheaves;
   if (o.t_end_s > 0) s << " --t-end " << o.t_end_s;
   s << " --rtol " << o.rtol << " --every " << o.every << " --max-evals " << o.max_evals << " --out " << o.out;
   if (!o.header.empty()) s << " --header " << o.header;
@@ -196,6 +198,7 @@ Action register_calibrate(CLI::App& app) {
                   "The header's function name, cvt::calibrated::NAME(RomParams&) (one header per fitted set)")
       ->capture_default_str();
   sub->add_option("--start", opt->start, "Start from a parameter file's values (default: the scenes' own)");
+  add_sheaves_option(sub, opt->sheaves);
   sub->add_option("--t-end", opt->t_end_s, "Shorten every run to this simulated time [s]");
   sub->add_option("--rtol", opt->rtol, "Reference's BDF relative tolerance, [1e-11, 1e-3]")->capture_default_str();
   sub->add_option("--max-steps", opt->max_steps, "Cap on the reference's integrator steps per scene")
@@ -237,7 +240,8 @@ Action register_calibrate(CLI::App& app) {
     for (const auto& n : names) {
       auto l = resolve_scene(n);
       std::string why;
-      if (!reference_params(l->scene, why)) throw UsageError{"--scene " + n + ": the reference cannot run " + why};
+      if (!reference_params(l->scene, sheave_mode(o.sheaves), why))
+        throw UsageError{"--scene " + n + ": the reference cannot run " + why};
       loaded.push_back(l);
       // --start moves the plant's parameters only; the reference runs the scene.
       plant_scenes.push_back(l->scene);
@@ -264,7 +268,7 @@ Action register_calibrate(CLI::App& app) {
       cvt::Scene ref_scene = loaded[li]->scene;
       ref_scene.t_end_s = c.scene.t_end_s;
       std::string why;
-      const auto mp = reference_params(ref_scene, why);
+      const auto mp = reference_params(ref_scene, sheave_mode(o.sheaves), why);
       cvt::mbd::RunOptions ro;
       ro.t_end_s = c.scene.t_end_s;
       ro.rtol = o.rtol;
@@ -326,6 +330,7 @@ Action register_calibrate(CLI::App& app) {
     nlohmann::json j;
     j["subcommand"] = "calibrate";
     j["scenes"] = names;
+    j["sheaves"] = o.sheaves;
     j["optimiser"] = "Eigen LevenbergMarquardt (forward-difference Jacobian)";
     j["status"] = static_cast<int>(status);
     j["plant_evaluations"] = pb.evals;

@@ -3,11 +3,13 @@
 // per sample, a JSON or text summary, a progress bar on a terminal.
 #include "cmd_mbd.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <memory>
 #include <stdexcept>
+#include <vector>
 
 #include "commands.hpp"
 #include "io_util.hpp"
@@ -27,9 +29,10 @@ void require_range(double v, double lo, double hi, const std::string& what, cons
                      (unit.empty() ? "" : " " + unit)};
 }
 
-// "F" (constant) or "t:F,t:F,..." with increasing t >= 0 [s] and F in N.
-cvt::mbd::ForceProfile parse_profile(const std::string& text, const std::string& what) {
-  cvt::mbd::ForceProfile p;
+// "V" (constant) or "t:V,t:V,..." with increasing t >= 0 [s], each V in [lo, hi] (unit).
+cvt::mbd::TimeProfile parse_profile(const std::string& text, const std::string& what, double lo, double hi,
+                                    const std::string& unit) {
+  cvt::mbd::TimeProfile p;
   if (text.find(':') == std::string::npos) {
     p.points.emplace_back(0.0, parse_finite(text, what));
   } else {
@@ -38,9 +41,9 @@ cvt::mbd::ForceProfile parse_profile(const std::string& text, const std::string&
       const std::size_t comma = text.find(',', start);
       const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
       const std::size_t colon = item.find(':');
-      if (colon == std::string::npos) throw UsageError{what + ": '" + item + "' is not t:F"};
+      if (colon == std::string::npos) throw UsageError{what + ": '" + item + "' is not t:value"};
       const double t = parse_finite(item.substr(0, colon), what + " (time)");
-      const double f = parse_finite(item.substr(colon + 1), what + " (force)");
+      const double f = parse_finite(item.substr(colon + 1), what + " (value)");
       if (t < 0) throw UsageError{what + ": times must be >= 0 s"};
       if (!p.points.empty() && t <= p.points.back().first) throw UsageError{what + ": times must increase"};
       p.points.emplace_back(t, f);
@@ -49,8 +52,46 @@ cvt::mbd::ForceProfile parse_profile(const std::string& text, const std::string&
     }
   }
   if (p.points.size() > 10000) throw UsageError{what + ": more than 10000 points"};
-  for (const auto& pt : p.points) require_range(pt.second, 100.0, 1e5, what, "N");
+  for (const auto& pt : p.points) require_range(pt.second, lo, hi, what, unit);
   return p;
+}
+
+cvt::mbd::TimeProfile parse_clamp(const std::string& text, const std::string& what) {
+  return parse_profile(text, what, 100.0, 1e5, "N");
+}
+
+cvt::mbd::TimeProfile parse_torque(const std::string& text, const std::string& what) {
+  return parse_profile(text, what, -1000.0, 1000.0, "N m");
+}
+
+// docs/rom.md#road-load, the plant's ranges (scene validation) with caps on work.
+cvt::mbd::RoadLoad parse_road_load(const std::string& text) {
+  const std::vector<double> v = parse_list(text, 0, "--road-load");
+  if (v.size() < 3 || v.size() > 4) throw UsageError{"--road-load: expected T0,cv,ca or T0,cv,ca,w_eps"};
+  cvt::mbd::RoadLoad r;
+  r.T0_Nm = v[0];
+  r.cv_Nms_rad = v[1];
+  r.ca_Nms2_rad2 = v[2];
+  if (v.size() == 4) r.w_eps_rad_s = v[3];
+  require_range(r.T0_Nm, 0.0, 1000.0, "--road-load T0", "N m");
+  require_range(r.cv_Nms_rad, 0.0, 100.0, "--road-load cv", "N m s/rad");
+  require_range(r.ca_Nms2_rad2, 0.0, 10.0, "--road-load ca", "N m s^2/rad^2");
+  if (!(r.w_eps_rad_s > 0 && r.w_eps_rad_s <= 1000.0))
+    throw UsageError{"--road-load w_eps: " + num(r.w_eps_rad_s) + " is outside (0, 1000] rad/s"};
+  return r;
+}
+
+// docs/mbd.md#start-at-speed: both speeds positive (the chain runs forward).
+cvt::mbd::StartAtSpeed parse_omega0(const std::string& text) {
+  const std::vector<double> v = parse_list(text, 2, "--omega0");
+  for (int j = 0; j < 2; ++j)
+    if (!(v[j] > 0 && v[j] <= 1000.0))
+      throw UsageError{"--omega0: " + num(v[j]) + " is outside (0, 1000] rad/s"};
+  cvt::mbd::StartAtSpeed s;
+  s.active = true;
+  s.omega1_rad_s = v[0];
+  s.omega2_rad_s = v[1];
+  return s;
 }
 
 nlohmann::json jnum(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
@@ -73,8 +114,16 @@ void add_model_options(CLI::App* sub, ModelOptions& o) {
   o.rtol_opt = sub->add_option("--rtol", o.rtol, "BDF relative tolerance, [1e-11, 1e-3] (default 5e-7)");
   sub->add_option("--links", o.links, "Number of links N, [36, 53]; sets the pretension")->capture_default_str();
   sub->add_option("--sample", o.sample_s, "Output interval [s], [1e-6, t-end]")->capture_default_str();
-  sub->add_option("--tau-in", o.tau_in_Nm, "Driver torque [N m], [-1000, 1000]")->capture_default_str();
-  sub->add_option("--tau-load", o.tau_load_Nm, "Load torque on the driven pulley [N m], [-1000, 1000]")->capture_default_str();
+  sub->add_option("--tau-in", o.tau_in,
+                  "Driver torque from the release: T, or a profile t:T,t:T,... [s:N m], T in [-1000, 1000]")
+      ->capture_default_str();
+  sub->add_option("--tau-load", o.tau_load, "Load torque on the driven pulley, same syntax")->capture_default_str();
+  o.road_opt = sub->add_option("--road-load", o.road_load,
+                               "Road load on the driven pulley, T0,cv,ca[,w_eps]: T0 tanh(w2/w_eps) + cv w2 + ca w2|w2| "
+                               "added to --tau-load [N m, N m s/rad, N m s^2/rad^2, rad/s]");
+  o.omega0_opt = sub->add_option("--omega0", o.omega0,
+                                 "Start at speed W1,W2 [rad/s], each in (0, 1000]: spin-up and hold before the "
+                                 "release (docs/mbd.md#start-at-speed)");
   sub->add_option("--ledger-tol", o.ledger_tol, "Stop when the energy ledger is off by more (relative), [1e-12, 1]")->capture_default_str();
   sub->add_option("--max-steps", o.max_steps, "Cap on integrator steps (work), [1, 1e12]")->capture_default_str();
   sub->add_option("--max-rows", o.max_rows, "Cap on output rows (memory and disk), [1, 1e9]")->capture_default_str();
@@ -84,8 +133,10 @@ void validate(const ModelOptions& o) {
   require_range(o.t_end_s, 1e-6, 3600.0, "--t-end", "s");
   require_range(o.sample_s, 1e-6, o.t_end_s, "--sample", "s (and at most --t-end)");
   require_range(o.links, 36, 53, "--links", "");
-  require_range(o.tau_in_Nm, -1000, 1000, "--tau-in", "N m");
-  require_range(o.tau_load_Nm, -1000, 1000, "--tau-load", "N m");
+  parse_torque(o.tau_in, "--tau-in");
+  parse_torque(o.tau_load, "--tau-load");
+  if (o.road_opt != nullptr && o.road_opt->count() > 0) parse_road_load(o.road_load);
+  if (o.omega0_opt != nullptr && o.omega0_opt->count() > 0) parse_omega0(o.omega0);
   require_range(o.ledger_tol, 1e-12, 1.0, "--ledger-tol", "");
   require_range(static_cast<double>(o.max_steps), 1, 1e12, "--max-steps", "");
   require_range(static_cast<double>(o.max_rows), 1, 1e9, "--max-rows", "");
@@ -109,8 +160,8 @@ void validate(const ModelOptions& o) {
   const bool given2 = o.clamp2_opt != nullptr && o.clamp2_opt->count() > 0;
   if (o.sheaves == "clamped") {
     if (!given1) throw UsageError{"--sheaves clamped needs --clamp-N"};
-    parse_profile(o.clamp1, "--clamp-N");
-    if (given2) parse_profile(o.clamp2, "--clamp2-N");
+    parse_clamp(o.clamp1, "--clamp-N");
+    if (given2) parse_clamp(o.clamp2, "--clamp2-N");
   } else if (given1 || given2) {
     throw UsageError{"--clamp-N/--clamp2-N apply to --sheaves clamped only"};
   }
@@ -119,12 +170,14 @@ void validate(const ModelOptions& o) {
 cvt::mbd::MbdParams params_for(const ModelOptions& o, int friction_case) {
   cvt::mbd::MbdParams p = cvt::mbd::seed_case(friction_case);
   p.links = o.links;
-  p.tau_in_Nm = o.tau_in_Nm;
-  p.tau_load_Nm = o.tau_load_Nm;
+  p.tau_in_Nm = parse_torque(o.tau_in, "--tau-in");
+  p.tau_load_Nm = parse_torque(o.tau_load, "--tau-load");
+  if (!o.road_load.empty()) p.road = parse_road_load(o.road_load);
+  if (!o.omega0.empty()) p.start = parse_omega0(o.omega0);
   if (o.sheaves == "clamped") {
     p.sheaves = SheaveMode::clamped;
-    p.clamp1_N = parse_profile(o.clamp1, "--clamp-N");
-    if (!o.clamp2.empty()) p.clamp2_N = parse_profile(o.clamp2, "--clamp2-N");
+    p.clamp1_N = parse_clamp(o.clamp1, "--clamp-N");
+    if (!o.clamp2.empty()) p.clamp2_N = parse_clamp(o.clamp2, "--clamp2-N");
   }
   return p;
 }
@@ -232,6 +285,33 @@ RunOutcome run_case(const ModelOptions& o, int friction_case, std::FILE* csv, st
 
 namespace {
 
+// docs/mbd.md#start-at-speed: the hold before the release and how steady it was.
+nlohmann::json start_json(const ModelOptions& o, const cvt::mbd::RunStats& st) {
+  if (o.omega0.empty() || st.hold_samples.empty()) return nullptr;
+  const cvt::mbd::StartAtSpeed start = params_for(o, 1).start;
+  const cvt::mbd::Sample& rel = st.hold_samples.back();
+  nlohmann::json j = {{"omega1_rad_s", start.omega1_rad_s},
+                      {"omega2_rad_s", start.omega2_rad_s},
+                      {"spinup_s", start.spinup_s},
+                      {"hold_s", start.hold_s},
+                      {"steps", st.start_steps},
+                      {"omega2_release_rad_s", rel.omega_rad_s[1]},
+                      {"holding_torque_Nm", rel.tau_in_Nm},
+                      {"F_ax1_release_N", rel.F_ax_N[0]},
+                      {"F_ax2_release_N", rel.F_ax_N[1]}};
+  const double window = std::min(0.2, start.hold_s);  // two halves of about a lap at 150 rad/s
+  if (window > 0) {
+    const cvt::mbd::HoldSteadiness h = cvt::mbd::hold_steadiness(st.hold_samples, window);
+    j["hold_window_s"] = h.window_s;
+    j["omega2_range_rel"] = h.omega2_range_rel;
+    j["holding_torque_mean_Nm"] = h.holding_torque_mean_Nm;
+    j["holding_torque_change_rel"] = h.holding_torque_change_rel;
+    j["F_ax1_change_rel"] = h.F_ax_change_rel[0];
+    j["F_ax2_change_rel"] = h.F_ax_change_rel[1];
+  }
+  return j;
+}
+
 nlohmann::json summary_json(const ModelOptions& o, int friction_case, const RunOutcome& r) {
   const auto& st = r.stats;
   const auto& s = r.summary;
@@ -288,6 +368,7 @@ nlohmann::json summary_json(const ModelOptions& o, int friction_case, const RunO
   j["T_tight_end_N"] = jnum(s.tension_tight_end_N);
   j["T_slack_end_N"] = jnum(s.tension_slack_end_N);
   j["wrap_links_end"] = {s.wrap_links_end[0], s.wrap_links_end[1]};
+  j["start_at_speed"] = start_json(o, st);
   return j;
 }
 
@@ -302,6 +383,11 @@ void print_text(const ModelOptions& o, int c, const RunOutcome& r) {
               s.F_ax_mean_N[0], s.window_s, s.F_ax_window_mean_N[0], s.F_ax1_ripple_N);
   std::printf("  strands at the end: tight %.1f N, slack %.1f N; links in the wraps %d, %d\n", s.tension_tight_end_N,
               s.tension_slack_end_N, s.wrap_links_end[0], s.wrap_links_end[1]);
+  if (!st.hold_samples.empty()) {
+    const cvt::mbd::Sample& rel = st.hold_samples.back();
+    std::printf("  start at speed: released at omega1 %.3f rad/s, omega2 %.3f rad/s, driver holding torque %.2f N m\n",
+                rel.omega_rad_s[0], rel.omega_rad_s[1], rel.tau_in_Nm);
+  }
   std::printf("  energy ledger: max residual %.2e of the largest term\n", st.ledger_residual_max_rel);
   std::printf("  %lld steps, %lld rhs, %lld jacobians, %.2f s wall (settle %.2f s)\n", st.steps, st.rhs_evals,
               st.jac_evals, st.wall_s, st.settle_wall_s);

@@ -24,7 +24,9 @@ struct ModelOptions {
   double rtol = 5e-7;
   int links = 44;
   double sample_s = 1e-3;
-  double tau_in_Nm = 100.0, tau_load_Nm = 50.0;
+  std::string tau_in = "100", tau_load = "50";  // "T" or "t:T,t:T,..." [s:N m]
+  std::string road_load;                        // "T0,cv,ca[,w_eps]"; empty: none
+  std::string omega0;                           // "W1,W2" [rad/s]; empty: from rest
   double ledger_tol = 1e-6;
   long long max_steps = 100000000;
   long long max_rows = 2000000;
@@ -33,6 +35,8 @@ struct ModelOptions {
   CLI::Option* rtol_opt = nullptr;
   CLI::Option* clamp1_opt = nullptr;
   CLI::Option* clamp2_opt = nullptr;
+  CLI::Option* road_opt = nullptr;
+  CLI::Option* omega0_opt = nullptr;
 };
 
 void add_model_options(CLI::App* sub, ModelOptions& o);

@@ -31,8 +31,8 @@ std::string fig13(const std::string& d, const ModelOptions& m) {
   const std::string png = d + "/fig13_pulley_speeds.png";
   auto s = open_text_file(d + "/fig13.gp");
   s << png_terminal(1000, 700) << "set output '" << png << "'\nset datafile separator ','\nset grid\n"
-    << "set multiplot layout 2,1 title 'Pulley speeds, tau_in = " << num(m.tau_in_Nm) << " N m, tau_load = "
-    << num(m.tau_load_Nm) << " N m (seed Fig. 13), multibody model, " << method_label(m) << "'\n"
+    << "set multiplot layout 2,1 title 'Pulley speeds, tau_in = " << m.tau_in << " N m, tau_load = "
+    << m.tau_load << " N m (seed Fig. 13), multibody model, " << method_label(m) << "'\n"
     << "set xlabel 't [s]'\nset ylabel 'pulley speed [rad/s]'\nset key top left\n";
   for (int c = 1; c <= 2; ++c) {
     s << "set title '(" << (c == 1 ? 'a' : 'b') << ") seed " << case_label(c) << "'\n"

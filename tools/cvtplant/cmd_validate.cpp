@@ -1,7 +1,9 @@
 // `cvtplant validate`: the real-time plant against the multibody reference,
 // scene by scene, on the same inputs (docs/validation.md, docs/cli.md#validate).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -23,6 +25,8 @@ struct Options {
   std::string scene = "all";
   std::string out_dir = "validation";
   std::string params;  // a parameter file applied to every scene's plant
+  std::string sheaves = "clamped";  // the reference's sheave mode
+  std::string scene_dir = "tools/scenes";  // scene files that --scene all adds
   double t_end_s = 0;  // 0: each scene's own
   double rtol = 5e-7;
   long long max_steps = 20000000;
@@ -37,19 +41,38 @@ struct SceneResult {
   double t_end_s = 0;
   Comparison cmp;
   ReferenceRun ref;
+  bool clamped = true;          // the reference's sheaves
   double stop_s[2] = {-1, -1};  // first time each reference sheave is at its end stop (-1: never)
   std::string png, csv;
 };
 
-// The built-in drive-train scenes (the oscillators hold both pulleys).
-std::vector<std::shared_ptr<LoadedScene>> scenes_for(const std::string& which) {
+bool holds_a_pulley(const cvt::Scene& s) { return s.params.hold_driver_speed || s.params.hold_driven_speed; }
+
+// The scene files (*.toml, by name) in dir; none if dir does not exist.
+std::vector<std::string> scene_files(const std::string& dir) {
+  std::vector<std::string> out;
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec)) return out;
+  for (const auto& e : std::filesystem::directory_iterator(dir, ec))
+    if (e.is_regular_file(ec) && e.path().extension() == ".toml") out.push_back(e.path().string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// `all`: the built-in drive-train scenes (the oscillators hold both pulleys)
+// and the drive-train scene files of scene_dir.
+std::vector<std::shared_ptr<LoadedScene>> scenes_for(const std::string& which, const std::string& scene_dir) {
   std::vector<std::shared_ptr<LoadedScene>> out;
   if (which != "all") {
     out.push_back(resolve_scene(which));
     return out;
   }
   for (const cvt::Scene& s : cvt::kBuiltinScenes)
-    if (!s.params.hold_driver_speed && !s.params.hold_driven_speed) out.push_back(resolve_scene(s.name));
+    if (!holds_a_pulley(s)) out.push_back(resolve_scene(s.name));
+  for (const std::string& f : scene_files(scene_dir)) {
+    auto l = resolve_scene(f);
+    if (!holds_a_pulley(l->scene)) out.push_back(l);
+  }
   return out;
 }
 
@@ -172,8 +195,9 @@ void print_text(const std::vector<SceneResult>& results) {
                 r.name.c_str(), r.t_end_s, r.cmp.compared_s, r.cmp.window_s,
                 r.ref.from_cache ? "from the cache" : "run now");
     if (!r.ref.failure.empty()) std::printf("The comparison ends there: %s.\n\n", r.ref.failure.c_str());
-    std::printf("Reference's movable sheaves at their end stops (a ratio limit) from: driver %s, driven %s.\n\n",
-                tfmt(r.stop_s[0]).c_str(), tfmt(r.stop_s[1]).c_str());
+    if (r.clamped)
+      std::printf("Reference's movable sheaves at their end stops (a ratio limit) from: driver %s, driven %s.\n\n",
+                  tfmt(r.stop_s[0]).c_str(), tfmt(r.stop_s[1]).c_str());
     std::printf("| quantity | unit | relative RMS error | plant (steady) | reference (steady) | steady-state error |\n");
     std::printf("|---|---|---|---|---|---|\n");
     for (const auto& e : r.cmp.rows)
@@ -200,19 +224,26 @@ Action register_validate(CLI::App& app) {
   sub->add_option("--rtol", opt->rtol, "Reference's BDF relative tolerance, [1e-11, 1e-3]")->capture_default_str();
   sub->add_option("--max-steps", opt->max_steps, "Cap on the reference's integrator steps per scene, [1, 1e12]")
       ->capture_default_str();
+  add_sheaves_option(sub, opt->sheaves);
+  auto* dir_opt = sub->add_option("--scene-dir", opt->scene_dir,
+                                  "Directory whose scene files (*.toml) --scene all adds to the built-in scenes")
+                      ->capture_default_str();
   sub->add_option("--params", opt->params,
                   "Run the plant with a parameter file's [params] (e.g. calibrate --out); the reference is unchanged");
   sub->add_flag("--json", opt->json, "Print the results as JSON");
   sub->add_flag("!--no-figures", opt->figures, "Skip the overlay PNGs");
-  return [opt, sub]() -> int {
+  return [opt, sub, dir_opt]() -> int {
     const Options& o = *opt;
+    std::error_code ec;
+    if (dir_opt->count() > 0 && !std::filesystem::is_directory(o.scene_dir, ec))
+      throw UsageError{"--scene-dir: " + o.scene_dir + " is not a directory"};
     if (sub->count("--t-end") > 0 && !(o.t_end_s > 0 && std::isfinite(o.t_end_s)))
       throw UsageError{"--t-end: must be a positive number of seconds"};
     if (!(o.max_t_end_s > 0 && std::isfinite(o.max_t_end_s))) throw UsageError{"--max-t-end: must be > 0"};
     if (!(o.rtol >= 1e-11 && o.rtol <= 1e-3)) throw UsageError{"--rtol: outside [1e-11, 1e-3]"};
     if (!(o.max_steps >= 1 && o.max_steps <= 1000000000000LL)) throw UsageError{"--max-steps: outside [1, 1e12]"};
     if (o.out_dir.empty()) throw UsageError{"--out-dir: empty"};
-    const auto scenes = scenes_for(o.scene);
+    const auto scenes = scenes_for(o.scene, o.scene_dir);
     // Every scene's length and the parameter file are checked before any work.
     for (const auto& l : scenes) {
       if (!o.params.empty()) {
@@ -236,7 +267,7 @@ Action register_validate(CLI::App& app) {
       r.name = l->name;
       cvt::Scene s = l->scene;
       std::string why;
-      const auto params = reference_params(s, why);
+      const auto params = reference_params(s, sheave_mode(o.sheaves), why);
       if (!params) {
         r.skipped = why;
         results.push_back(r);
@@ -255,7 +286,9 @@ Action register_validate(CLI::App& app) {
       const Series plant = plant_run(s, s.frame_s);
       // A reference that stopped early is compared up to there.
       r.cmp = compare(plant, r.ref.series, std::min(plant.size(), r.ref.series.size()));
-      for (int j = 0; j < 2; ++j) r.stop_s[j] = first_at_stop_s(r.ref, j, params->sheave_stop_m);
+      r.clamped = params->sheaves == cvt::mbd::SheaveMode::clamped;
+      if (r.clamped)
+        for (int j = 0; j < 2; ++j) r.stop_s[j] = first_at_stop_s(r.ref, j, params->sheave_stop_m);
       r.csv = o.out_dir + "/" + r.name + ".csv";
       write_overlay_csv(r.csv, plant, r.ref.series);
       if (o.figures) {
@@ -268,10 +301,12 @@ Action register_validate(CLI::App& app) {
       nlohmann::json j;
       j["subcommand"] = "validate";
       j["out_dir"] = o.out_dir;
+      j["sheaves"] = o.sheaves;
       j["scenes"] = nlohmann::json::array();
       for (const auto& r : results) j["scenes"].push_back(to_json(r));
       print_json(j);
     } else {
+      std::printf("The reference's sheaves: %s.\n\n", o.sheaves.c_str());
       print_text(results);
     }
     return 0;

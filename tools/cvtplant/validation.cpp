@@ -37,17 +37,11 @@ Series Series::select(std::size_t n, std::size_t step) const {
 
 namespace {
 
-bool is_constant(const cvt::Profile& p) {
-  if (p.kind == cvt::ProfileKind::constant) return true;
-  if (p.kind == cvt::ProfileKind::step || p.kind == cvt::ProfileKind::ramp) return p.value == p.value2;
-  return false;
-}
-
-// The scene's clamping profile as the reference's piecewise-linear force
-// profile (a step becomes a 1 ms ramp: the reference integrates it, the
-// plant samples it per frame).
-std::optional<cvt::mbd::ForceProfile> force_profile(const cvt::Profile& p, std::string& why_not) {
-  cvt::mbd::ForceProfile f;
+// A scene's input profile as the reference's piecewise-linear one (a step
+// becomes a 1 ms ramp: the reference integrates it, the plant samples it per
+// frame). what: "clamping" or "torque", for the reason a sine is refused.
+std::optional<cvt::mbd::TimeProfile> time_profile(const cvt::Profile& p, const char* what, std::string& why_not) {
+  cvt::mbd::TimeProfile f;
   switch (p.kind) {
     case cvt::ProfileKind::constant: f.points = {{0.0, p.value}}; break;
     case cvt::ProfileKind::step: f.points = {{p.t0_s, p.value}, {p.t0_s + 1e-3, p.value2}}; break;
@@ -56,35 +50,45 @@ std::optional<cvt::mbd::ForceProfile> force_profile(const cvt::Profile& p, std::
       for (int i = 0; i < p.n; ++i) f.points.emplace_back(p.t_s[i], p.v[i]);
       break;
     case cvt::ProfileKind::sine:
-      why_not = "a sine clamping profile (the reference takes piecewise-linear clamping forces)";
+      why_not = std::string("a sine ") + what + " profile (the reference takes piecewise-linear profiles)";
       return std::nullopt;
   }
-  for (const auto& pt : f.points)
-    if (!(pt.second >= 100.0)) {
-      why_not = "a clamping force below 100 N (the reference's clamped sheaves need a seated chain)";
-      return std::nullopt;
-    }
   return f;
 }
 
 }  // namespace
 
-std::optional<cvt::mbd::MbdParams> reference_params(const cvt::Scene& s, std::string& why_not) {
+const char* sheave_mode_name(cvt::mbd::SheaveMode m) { return m == cvt::mbd::SheaveMode::fixed ? "fixed" : "clamped"; }
+
+CLI::Option* add_sheaves_option(CLI::App* sub, std::string& mode) {
+  return sub
+      ->add_option("--sheaves", mode,
+                   "The reference's sheaves: clamped (pushed by the scene's clamping) or fixed (the seed's pulleys; "
+                   "the axial force is then the reference's output)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"clamped", "fixed"}));
+}
+
+cvt::mbd::SheaveMode sheave_mode(const std::string& name) {
+  return name == "fixed" ? cvt::mbd::SheaveMode::fixed : cvt::mbd::SheaveMode::clamped;
+}
+
+std::optional<cvt::mbd::MbdParams> reference_params(const cvt::Scene& s, cvt::mbd::SheaveMode sheaves,
+                                                    std::string& why_not) {
   const cvt::RomParams& rp = s.params;
-  if (s.features & cvt::rom_feature::road_load) {
-    why_not = "road load (the reference's load torque is constant)";
-    return std::nullopt;
-  }
+  const cvt::RomInitial& in = s.initial;
   if (rp.hold_driver_speed || rp.hold_driven_speed) {
     why_not = "held pulleys (the oscillator scenes; the reference is a drive train)";
     return std::nullopt;
   }
-  if (s.initial.omega1_rad_s != 0.0 || s.initial.omega2_rad_s != 0.0) {
-    why_not = "a start at speed (the reference starts from rest, its chain settled on the pitch line)";
+  if (in.x1_m != 0.0 || in.xd1_m_s != 0.0 || in.x2_m != 0.0 || in.xd2_m_s != 0.0 || in.radius_offset_m != 0.0) {
+    why_not = "initial lump or radial states (the reference's chain starts settled on its pitch line)";
     return std::nullopt;
   }
-  if (!is_constant(s.tau_in) || !is_constant(s.tau_load)) {
-    why_not = "a torque profile (the reference's torques are constant)";
+  const bool at_rest = in.omega1_rad_s == 0.0 && in.omega2_rad_s == 0.0;
+  if (!at_rest && !(in.omega1_rad_s > 0.0 && in.omega2_rad_s > 0.0)) {
+    why_not = "a start with a pulley at rest or turning backwards (the reference starts from rest or with both "
+              "pulleys running forward)";
     return std::nullopt;
   }
   // The chain and its pulley radii stay the seed's (Table 1): the plant's
@@ -95,11 +99,36 @@ std::optional<cvt::mbd::MbdParams> reference_params(const cvt::Scene& s, std::st
   p.J1_kgm2 = rp.J1_kgm2;
   p.J2_kgm2 = rp.J2_kgm2;
   p.beta0_rad = rp.beta0_rad;
-  p.tau_in_Nm = s.tau_in.at(0.0);
-  p.tau_load_Nm = s.tau_load.at(0.0);
-  p.sheaves = cvt::mbd::SheaveMode::clamped;
-  auto clamp = force_profile(s.clamp, why_not);
+  auto tau_in = time_profile(s.tau_in, "torque", why_not);
+  if (!tau_in) return std::nullopt;
+  auto tau_load = time_profile(s.tau_load, "torque", why_not);
+  if (!tau_load) return std::nullopt;
+  p.tau_in_Nm = *tau_in;
+  p.tau_load_Nm = *tau_load;
+  if (s.features & cvt::rom_feature::road_load) {
+    // docs/rom.md#road-load, the same law (cvt::road_load_torque).
+    p.road.T0_Nm = rp.road_T0_Nm;
+    p.road.cv_Nms_rad = rp.road_cv_Nms_rad;
+    p.road.ca_Nms2_rad2 = rp.road_ca_Nms2_rad2;
+    p.road.w_eps_rad_s = rp.road_w_eps_rad_s;
+  }
+  if (!at_rest) {
+    // docs/mbd.md#start-at-speed
+    p.start.active = true;
+    p.start.omega1_rad_s = in.omega1_rad_s;
+    p.start.omega2_rad_s = in.omega2_rad_s;
+  }
+  p.sheaves = sheaves;
+  // Fixed sheaves: the seed's pulleys, the axial force is the reference's
+  // output and the scene's clamping is not an input.
+  if (sheaves == cvt::mbd::SheaveMode::fixed) return p;
+  auto clamp = time_profile(s.clamp, "clamping", why_not);
   if (!clamp) return std::nullopt;
+  for (const auto& pt : clamp->points)
+    if (!(pt.second >= 100.0)) {
+      why_not = "a clamping force below 100 N (the reference's clamped sheaves need a seated chain)";
+      return std::nullopt;
+    }
   p.clamp1_N = *clamp;
   // The wedging plant holds the driven clamping constant; without wedging the
   // plant has no driven clamping and the reference's default (the static
@@ -121,15 +150,23 @@ std::string reference_key(const cvt::mbd::MbdParams& p, const cvt::mbd::RunOptio
   k << "friction law " << static_cast<int>(f.law) << " sign " << static_cast<int>(f.sign) << " mu0 " << f.mu0 << " a "
     << f.a << " b " << f.b_m_s << " sigma " << f.sigma << " kappa " << f.kappa_s_m << " chi " << f.chi_s_m
     << " lambda " << f.lambda_s_m << "\n";
-  k << "tau " << p.tau_in_Nm << ' ' << p.tau_load_Nm << " hold " << p.hold1.active << ' ' << p.hold1.omega_rad_s << ' '
-    << p.hold2.active << ' ' << p.hold2.omega_rad_s << "\n";
-  k << "sheaves " << static_cast<int>(p.sheaves) << " clamp1";
-  for (const auto& pt : p.clamp1_N.points) k << ' ' << pt.first << ':' << pt.second;
-  k << " clamp2";
-  for (const auto& pt : p.clamp2_N.points) k << ' ' << pt.first << ':' << pt.second;
+  const auto profile = [&k](const char* name, const cvt::mbd::TimeProfile& f) {
+    k << ' ' << name;
+    for (const auto& pt : f.points) k << ' ' << pt.first << ':' << pt.second;
+  };
+  k << "tau";
+  profile("in", p.tau_in_Nm);
+  profile("load", p.tau_load_Nm);
+  k << " road " << p.road.T0_Nm << ' ' << p.road.cv_Nms_rad << ' ' << p.road.ca_Nms2_rad2 << ' '
+    << p.road.w_eps_rad_s << " hold " << p.hold1.active << ' ' << p.hold1.omega_rad_s << ' ' << p.hold2.active << ' '
+    << p.hold2.omega_rad_s << "\n";
+  k << "sheaves " << sheave_mode_name(p.sheaves);
+  profile("clamp1", p.clamp1_N);
+  profile("clamp2", p.clamp2_N);
   k << " ms " << p.sheave_mass_kg << " cs " << p.sheave_damping_Ns_m << " stop " << p.sheave_stop_m << ' '
     << p.sheave_stop_N_m << "\n";
-  k << "settle " << p.settle_s << ' ' << p.settle_drag_Ns_m << "\n";
+  k << "settle " << p.settle_s << ' ' << p.settle_drag_Ns_m << " start " << p.start.active << ' '
+    << p.start.omega1_rad_s << ' ' << p.start.omega2_rad_s << ' ' << p.start.spinup_s << ' ' << p.start.hold_s << "\n";
   k << "method " << static_cast<int>(r.method) << " t_end " << r.t_end_s << " rtol " << r.rtol << " dt " << r.dt_s
     << " sample " << r.sample_s << " ledger " << r.ledger_tol << " settle_rtol " << r.settle_rtol << "\n";
   return k.str();

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "cvtplant/mbd/params.hpp"
 #include "cvtplant/mbd/run.hpp"
 #include "cvtplant/scene/scene.hpp"
@@ -25,12 +27,20 @@ struct Series {
 };
 
 // The reference's inputs for a plant scene, or why it cannot run that scene
-// (a reason in `why_not`). The reference starts from rest with constant
-// torques; a scene needs no road load, no held pulley and zero initial
-// speeds. Its clamping profile drives the reference's clamped sheaves
-// (docs/mbd.md#clamped-sheaves); the scene's geometry, inertias and friction
-// law are copied.
-std::optional<cvt::mbd::MbdParams> reference_params(const cvt::Scene& s, std::string& why_not);
+// (a reason in `why_not`); the single place that maps a scene to the
+// reference (docs/validation.md#method). The scene's friction law, inertias
+// and half sheave angle are copied; its torque profiles, road load and start
+// speeds (a start at speed, docs/mbd.md#start-at-speed) become the
+// reference's. Clamped sheaves (docs/mbd.md#clamped-sheaves) are pushed by
+// the scene's clamping profile; fixed sheaves are the seed's pulleys, whose
+// axial force is an output. Refused: held pulleys, initial lump states, a
+// start with one pulley at rest, sine profiles, clamping below 100 N.
+std::optional<cvt::mbd::MbdParams> reference_params(const cvt::Scene& s, cvt::mbd::SheaveMode sheaves,
+                                                    std::string& why_not);
+const char* sheave_mode_name(cvt::mbd::SheaveMode m);  // "fixed", "clamped"
+// `--sheaves clamped|fixed` of validate and calibrate (docs/validation.md#method).
+CLI::Option* add_sheaves_option(CLI::App* sub, std::string& mode);
+cvt::mbd::SheaveMode sheave_mode(const std::string& name);
 
 // The text that identifies a reference run: every input and the reference's
 // version (cvt::mbd::kReferenceVersion). Equal texts give equal runs.

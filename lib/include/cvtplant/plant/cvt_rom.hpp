@@ -243,7 +243,7 @@ class CvtRom {
   S load_torque(const S& w2) const {
     S tl(inputs.tau_load_Nm);
     if constexpr (L::kRoad) {
-      tl = tl + S(c_.T0) * tanh(w2 * S(c_.inv_w_eps)) + S(c_.cv) * w2 + S(c_.ca) * w2 * abs(w2);
+      tl = road_load_torque(tl, S(c_.T0), S(c_.inv_w_eps), S(c_.cv), S(c_.ca), w2);
     }
     return tl;
   }

@@ -7,6 +7,10 @@
 // Fixed point (RomUnits): the arguments are in the plant's units; every
 // operation saturates (scalar/fixed.hpp), so an out-of-range intermediate
 // shows as a state at a rail, which the watchdog reports.
+//
+// Also used by the multibody reference (mbd/), so that both models load the
+// driven shaft by the same law.
+#include "cvtplant/math/detmath.hpp"
 
 namespace cvt {
 
@@ -79,6 +83,16 @@ inline S friction_torque(const S& r1e, const S& F1, const S& F2) {
 template <class S>
 inline S driven_radius_change(const S& rho, const S& a1, const S& a2, const S& a3) {
   return rho * (a1 + rho * (a2 + rho * a3));
+}
+
+// Load torque at the driven shaft with road load (docs/rom.md#road-load):
+// tau_load + T0 tanh(w2 / w_eps) + c_v w2 + c_a w2 |w2| [N m], w_eps given as
+// its inverse. tanh and abs are the core's (cvt::dm for double and float;
+// Fixed and Dual carry their own), so a dual number w2 gives the slope too.
+template <class S>
+inline S road_load_torque(const S& tau_load, const S& T0, const S& inv_w_eps, const S& cv, const S& ca,
+                          const S& w2) {
+  return tau_load + T0 * tanh(w2 * inv_w_eps) + cv * w2 + ca * w2 * abs(w2);
 }
 
 }  // namespace cvt

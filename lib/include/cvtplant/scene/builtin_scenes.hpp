@@ -21,7 +21,8 @@ namespace builtin_detail {
 // variable-ratio plant fitted to the reference's ratio under load
 // (calibrated_wrap_tension.hpp, with tools/params/wrap-tension.toml; it acts
 // only with the wedging feature, docs/rom.md#wrap-tension). clamp-step and
-// tip-in, which the reference cannot run, keep the seed's even wrap.
+// tip-in, not calibrated (docs/validation.md#calibrated-set), keep the
+// seed's even wrap.
 constexpr void calibrated_wrap(RomParams& p) {
   p.entry_load_share = 0.705;
   calibrated::apply(p);

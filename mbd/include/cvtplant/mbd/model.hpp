@@ -69,9 +69,12 @@ class ChainModel {
  public:
   explicit ChainModel(const MbdParams& p);
 
-  enum class Phase { settle, run };
-  // Settle: both pulleys held at rest, drag on the links, no loads. Run:
-  // the loads (or speed holds) of the parameters.
+  // docs/mbd.md#start-up. Settle: both pulleys held at rest, friction off,
+  // drag on the links, no loads. Spin-up (a start at speed): friction on, both
+  // pulley speeds imposed along a smooth ramp to the start speeds. Hold: the
+  // driver held at its start speed, the driven pulley free under the load at
+  // t = 0. Run: the loads (or speed holds) of the parameters.
+  enum class Phase { settle, spinup, hold, run };
   void set_phase(Phase ph) { phase_ = ph; }
   Phase phase() const { return phase_; }
 
@@ -120,17 +123,40 @@ class ChainModel {
   std::string state_problem(const double* y) const;
 
   double clamp_force(int j, double t_s) const;
+  // Load torque on the driven pulley at t and its speed w2: tau_load(t) plus
+  // the road load (docs/rom.md#road-load), and its slope d/dw2.
+  double load_torque(double t_s, double omega2_rad_s, double* slope = nullptr) const;
+  // Start-up times (docs/mbd.md#start-up): the settle runs from settle_start_s()
+  // to spinup_start_s(), the spin-up to hold_start_s(), the hold to 0.
+  double settle_start_s() const { return -(p_.settle_s + p_.start.duration_s()); }
+  double spinup_start_s() const { return -p_.start.duration_s(); }
+  double hold_start_s() const { return p_.start.active ? -p_.start.hold_s : 0.0; }
+  // Imposed speed of pulley j during the spin-up at t, and its rate.
+  double spinup_speed(int j, double t_s, double* rate = nullptr) const;
   double stop_force(double opening_m) const;  // the movable sheave's end stops [N]
 
  private:
   void build_pattern();
-  double applied_torque(int j, double chain_moment) const;
+  // How the drive turns pulley j in the current phase (docs/mbd.md#equations-of-motion):
+  // held (its speed imposed; rate the imposed acceleration) or free under
+  // torque_Nm (the input torque on the driver, the load torque on the driven)
+  // with slope d torque / d omega_j.
+  struct Drive {
+    bool held = true;
+    double rate = 0;
+    double torque_Nm = 0, slope = 0;
+  };
+  Drive drive(int j, double t_s, double omega_rad_s) const;
+  // The torque the drive applies (held: what holds the speed), booked as input
+  // (driver) or load (driven) work.
+  double applied_torque(int j, const Drive& d, double chain_moment) const;
 
   MbdParams p_;
   DriveGeometry geo_;
   Phase phase_ = Phase::run;
   int n_links_, n_, sheave_base_, ledger_base_;
   double inertia_;
+  double inv_w_eps_;     // 1 / w_eps of the road load
   double thrust_ratio_;  // theta2 / theta1: static clamp ratio for the driven default
   SparsePattern pattern_;
   std::vector<std::int32_t> index_;  // dense (row * n + col) -> position in pattern, -1 if absent

@@ -23,12 +23,38 @@ inline constexpr int kReferenceVersion = 1;
 // pushed closed by a given force (docs/mbd.md#clamped-sheaves).
 enum class SheaveMode { fixed, clamped };
 
-// Axial clamping force as a function of time: piecewise linear through
-// (t_s, force_N) points, held constant before the first and after the last.
-struct ForceProfile {
+// A quantity as a function of time: piecewise linear through (t_s, value)
+// points, held constant before the first and after the last. The clamping
+// forces [N] and the input and load torques [N m] are such profiles.
+struct TimeProfile {
   std::vector<std::pair<double, double>> points;  // strictly increasing t_s
   double at(double t_s) const;
   bool empty() const { return points.empty(); }
+  static TimeProfile constant(double value) { return TimeProfile{{{0.0, value}}}; }
+};
+
+// Road load on the driven shaft, the real-time plant's law
+// (docs/rom.md#road-load, cvt::road_load_torque): the load torque is
+// tau_load(t) + T0 tanh(w2 / w_eps) + c_v w2 + c_a w2 |w2|. All zero: none.
+struct RoadLoad {
+  double T0_Nm = 0.0;
+  double cv_Nms_rad = 0.0;
+  double ca_Nms2_rad2 = 0.0;
+  double w_eps_rad_s = 1.0;  // tanh smoothing of the rolling-resistance sign
+  bool active() const { return T0_Nm != 0.0 || cv_Nms_rad != 0.0 || ca_Nms2_rad2 != 0.0; }
+};
+
+// A start at speed (docs/mbd.md#start-at-speed): after the settle at rest the
+// pulleys are run up to omega1, omega2 with the friction on (spin-up, both
+// speeds imposed, a smooth ramp), then the driver is held at omega1 while the
+// driven pulley runs free under the load at t = 0 and finds its own speed
+// (hold); released at t = 0. Inactive: the release is from rest.
+struct StartAtSpeed {
+  bool active = false;
+  double omega1_rad_s = 0.0, omega2_rad_s = 0.0;
+  double spinup_s = 0.2;
+  double hold_s = 1.0;
+  double duration_s() const { return active ? spinup_s + hold_s : 0.0; }
 };
 
 // A pulley speed imposed kinematically (a test rig's motor): from the release
@@ -60,14 +86,15 @@ struct MbdParams {
   bool sheave_deformation = true;  // seed Eq. 3-4 on both pulleys
   // --- friction (seed Eq. 6, Table 2), the core's laws and sign smoothing
   FrictionParams<double> friction = friction_presets::table2_case1<double>();
-  // --- loads (seed section 4): constant torques from the release on
-  double tau_in_Nm = seed::kInputTorque_Nm;
-  double tau_load_Nm = seed::kLoadTorque_Nm;
+  // --- loads (seed section 4: constant torques) from the release on
+  TimeProfile tau_in_Nm = TimeProfile::constant(seed::kInputTorque_Nm);
+  TimeProfile tau_load_Nm = TimeProfile::constant(seed::kLoadTorque_Nm);
+  RoadLoad road;  // added to tau_load on the driven pulley
   SpeedHold hold1, hold2;
   // --- sheaves
   SheaveMode sheaves = SheaveMode::fixed;
-  ForceProfile clamp1_N;  // driver; required in clamped mode
-  ForceProfile clamp2_N;  // driven; empty: clamp1 times the static thrust ratio theta2/theta1
+  TimeProfile clamp1_N;  // driver; required in clamped mode
+  TimeProfile clamp2_N;  // driven; empty: clamp1 times the static thrust ratio theta2/theta1
   double sheave_mass_kg = 2.0;         // movable sheave (the real-time plant's value)
   double sheave_damping_Ns_m = 1045.0;  // zeta ~ 0.3 against the wrap's axial stiffness
   // Ratio end stops: the movable sheave travels +-2 tan(beta0) x 25 mm, the
@@ -79,6 +106,7 @@ struct MbdParams {
   // pulleys held, a light drag on the links while it settles; released at t = 0.
   double settle_s = 0.1;
   double settle_drag_Ns_m = 20.0;
+  StartAtSpeed start;  // after the settle; inactive: released from rest
 
   double link_inertia() const {
     return link_inertia_kgm2 > 0 ? link_inertia_kgm2 : link_mass_kg * link_length_m * link_length_m / 12.0;

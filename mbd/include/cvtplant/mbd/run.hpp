@@ -6,6 +6,7 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "cvtplant/mbd/model.hpp"
 #include "cvtplant/mbd/params.hpp"
@@ -42,7 +43,25 @@ struct RunStats : SolverCounters {
   double ledger_floor_J = 0;           // smallest ledger scale (see ledger_scale_J)
   int states = 0;
   long long jacobian_nnz = 0;
+  // A start at speed (docs/mbd.md#start-at-speed): the integrator steps of
+  // the spin-up and the hold, and the hold sampled every millisecond up to
+  // the release (t < 0; the driver's tau_in is its holding torque).
+  long long start_steps = 0;
+  std::vector<Sample> hold_samples;
 };
+
+// How steady the hold of a start at speed was over its last window_s
+// (docs/mbd.md#start-at-speed): the driven speed's range (max - min) and the
+// change of the means of the driver's holding torque and of the axial forces
+// between the window's two halves, each relative to the window's mean.
+struct HoldSteadiness {
+  double window_s = 0;
+  double omega2_mean_rad_s = 0, omega2_range_rel = 0;
+  double holding_torque_mean_Nm = 0, holding_torque_change_rel = 0;
+  double F_ax_mean_N[2] = {0, 0}, F_ax_change_rel[2] = {0, 0};
+};
+// Throws std::invalid_argument if the samples do not cover the window.
+HoldSteadiness hold_steadiness(const std::vector<Sample>& hold_samples, double window_s);
 
 
 // A run that went bad: the time and the quantity, for the user, and what the
