@@ -84,68 +84,79 @@ struct LineCounter {
 // j > i + w are visited, rows in order. Diagonal lines run along k = j - i;
 // vertical lines of the full matrix are the upper triangle's columns plus,
 // transposed, its rows (the band |i-j| <= w, never empty, separates the two
-// halves of every column, so no line crosses it). A line through (i, j)
-// goes on from row i - 1 if (i - 1, j - 1) (its diagonal) or (i - 1, j)
-// (its column) was a recurrence, read from the previous row's bit set; each
-// line keeps only its current run's length (4 bytes), entered in the
-// histogram when the next run on that line starts or at the end.
+// halves of every column, so no line crosses it). Each row's points are a
+// bit set; against the previous row's, 64 columns at a time, a diagonal
+// run starts at (i, j) when (i - 1, j - 1) is not a point and ends after
+// (i - 1, j - 1) when (i, j) is not, a column's likewise with (i - 1, j).
+// Only a run's start row is stored (by diagonal k and by column j), read
+// back when it ends: work per run rather than per recurrence.
 class UpperLines {
  public:
   UpperLines(std::size_t n, Histograms& h)
-      : diag_(n + 1, 0), col_(n + 1, 0), bits_{std::vector<std::uint64_t>((n + 64) / 64 + 1, 0),
-                                               std::vector<std::uint64_t>((n + 64) / 64 + 1, 0)},
+      : diag_start_(n + 1, 0), col_start_(n + 1, 0), bits_{std::vector<std::uint64_t>((n + 64) / 64 + 1, 0),
+                                                           std::vector<std::uint64_t>((n + 64) / 64 + 1, 0)},
         words_{std::vector<std::uint32_t>(n + 1), std::vector<std::uint32_t>(n + 1)}, h_(h) {}
 
-  // The recurrences (i, j), j > i + w, of row i, in any order.
+  // The recurrences (i, j), j > i + w, of row i, in any order; rows 0, 1, ...
   void row(std::uint32_t i, const std::uint32_t* js, std::size_t count) {
-    std::vector<std::uint64_t>& cur = bits_[i & 1];
-    const std::vector<std::uint64_t>& prev = bits_[(i & 1) ^ 1];
-    std::vector<std::uint32_t>& words = words_[i & 1];
+    const int p = static_cast<int>(i & 1), q = p ^ 1;  // rows i and i - 1
+    std::vector<std::uint64_t>& cur = bits_[p];
+    std::vector<std::uint32_t>& words = words_[p];
     // The bit set of row i - 2 is cleared for row i.
-    for (std::size_t t = 0; t < touched_[i & 1]; ++t) cur[words[t]] = 0;
+    for (std::size_t t = 0; t < touched_[p]; ++t) cur[words[t]] = 0;
     std::size_t touched = 0;
     for (std::size_t t = 0; t < count; ++t) {
       const std::uint32_t j = js[t];
-      extend(diag_[j - i], has(prev, j - 1), h_.diag);
-      extend(col_[j], has(prev, j), h_.vert);
       // The row's set of points, and each word of it once in `words`.
       std::uint64_t& word = cur[j >> 6];
       words[touched] = j >> 6;
       touched += word == 0 ? 1 : 0;
       word |= std::uint64_t{1} << (j & 63);
     }
-    touched_[i & 1] = touched;
-    // The row's horizontal runs, the lower triangle's vertical lines: read
-    // a word at a time, one step per run rather than per point. A run starts
-    // at a set bit whose lower neighbour (the previous word's top bit across
-    // a word boundary) is clear.
+    touched_[p] = touched;
+    last_ = p;
+    const std::vector<std::uint64_t>& prev = bits_[q];
+    // Runs that end: points of row i - 1 not continued in row i.
+    for (std::size_t t = 0; t < touched_[q]; ++t) {
+      const std::uint32_t u = words_[q][t];
+      end_runs(u, prev[u] & ~((cur[u] >> 1) | (cur[u + 1] << 63)), i, 1, diag_start_, h_.diag);
+      end_runs(u, prev[u] & ~cur[u], i, 0, col_start_, h_.vert);
+    }
+    // Runs that start: points of row i not continuing a run of row i - 1;
+    // and the row's horizontal runs, the lower triangle's vertical lines.
     for (std::size_t t = 0; t < touched; ++t) {
       const std::uint32_t w = words[t];
       const std::uint64_t b = cur[w];
+      const std::uint64_t prev_below = w > 0 ? prev[w - 1] >> 63 : 0;
+      for (std::uint64_t m = b & ~((prev[w] << 1) | prev_below); m != 0; m &= m - 1)
+        diag_start_[(w << 6) + static_cast<std::uint32_t>(__builtin_ctzll(m)) - i] = i;
+      for (std::uint64_t m = b & ~prev[w]; m != 0; m &= m - 1)
+        col_start_[(w << 6) + static_cast<std::uint32_t>(__builtin_ctzll(m))] = i;
+      // A horizontal run starts at a set bit whose lower neighbour (the
+      // previous word's top bit across a word boundary) is clear.
       const std::uint64_t below = w > 0 ? cur[w - 1] >> 63 : 0;
-      std::uint64_t starts = b & ~((b << 1) | below);
-      while (starts != 0) {
-        const int s = __builtin_ctzll(starts);
-        starts &= starts - 1;
-        h_.vert[run_from(cur, w, s)] += 1;
-      }
+      for (std::uint64_t m = b & ~((b << 1) | below); m != 0; m &= m - 1)
+        h_.vert[run_from(cur, w, __builtin_ctzll(m))] += 1;
     }
   }
-  void flush() {
-    for (std::uint32_t len : diag_)
-      if (len > 0) h_.diag[len] += 1;
-    for (std::uint32_t len : col_)
-      if (len > 0) h_.vert[len] += 1;
+  // After the last row (i): its points end their diagonal and column runs.
+  void flush(std::uint32_t rows) {
+    for (std::size_t t = 0; t < touched_[last_]; ++t) {
+      const std::uint32_t u = words_[last_][t];
+      end_runs(u, bits_[last_][u], rows, 1, diag_start_, h_.diag);
+      end_runs(u, bits_[last_][u], rows, 0, col_start_, h_.vert);
+    }
   }
 
  private:
-  static bool has(const std::vector<std::uint64_t>& b, std::uint32_t j) { return (b[j >> 6] >> (j & 63)) & 1u; }
-  static void extend(std::uint32_t& len, bool goes_on, std::vector<std::uint64_t>& hist) {
-    if (goes_on) {
-      ++len;
-    } else {
-      if (len > 0) hist[len] += 1;
-      len = 1;
+  // The runs through the points `ended` of word u of row i - 1, which row i
+  // does not continue: a diagonal's (shift 1) is stored at k = j + 1 - i,
+  // a column's (shift 0) at j.
+  static void end_runs(std::uint32_t u, std::uint64_t ended, std::uint32_t i, std::uint32_t shift,
+                       const std::vector<std::uint32_t>& start, std::vector<std::uint64_t>& hist) {
+    for (; ended != 0; ended &= ended - 1) {
+      const std::uint32_t j = (u << 6) + static_cast<std::uint32_t>(__builtin_ctzll(ended));
+      hist[i - start[j + shift - (shift != 0 ? i : 0)]] += 1;
     }
   }
   // Length of the run of set bits from bit s of word w on (the bit set has
@@ -157,10 +168,12 @@ class UpperLines {
     while (b[++w] == ~std::uint64_t{0}) len += 64;
     return len + static_cast<std::uint32_t>(__builtin_ctzll(~b[w]));
   }
-  std::vector<std::uint32_t> diag_, col_;      // current run length per diagonal k and per column j
-  std::vector<std::uint64_t> bits_[2];         // rows i and i - 1 (by parity): their points
-  std::vector<std::uint32_t> words_[2];        // the words each of them set
+  std::vector<std::uint32_t> diag_start_;  // the start row of each diagonal k's current run
+  std::vector<std::uint32_t> col_start_;   // and of each column j's
+  std::vector<std::uint64_t> bits_[2];     // rows i and i - 1 (by parity): their points
+  std::vector<std::uint32_t> words_[2];    // the words each of them set
   std::size_t touched_[2] = {0, 0};
+  int last_ = 0;  // parity of the last row
   Histograms& h_;
 };
 
@@ -420,6 +433,7 @@ RqaResult rqa(const Embedding& e, const RqaOptions& opt) {
   UpperLines lines(e.n, hist);
   std::vector<std::uint32_t> row(e.n + 2);
   std::uint64_t rec_upper = 0;
+  std::uint32_t rows = 0;
   const double eps2 = eps * eps;
   for (std::size_t i = 0; i + static_cast<std::size_t>(w) + 1 < e.n; ++i) {
     report(opt, i, e.n);
@@ -427,8 +441,9 @@ RqaResult rqa(const Embedding& e, const RqaOptions& opt) {
         grid.within(i, static_cast<std::uint32_t>(i + static_cast<std::size_t>(w) + 1), eps2, row.data());
     lines.row(static_cast<std::uint32_t>(i), row.data(), count);
     rec_upper += count;
+    rows = static_cast<std::uint32_t>(i + 1);
   }
-  lines.flush();
+  lines.flush(rows);
   if (opt.progress) opt.progress(static_cast<double>(e.n), static_cast<double>(e.n));
   return finish(hist, rec_upper, e, opt, eps, w);
 }
