@@ -178,7 +178,10 @@ void DelayNeighbours::set_dimension(int m, std::size_t rows) {
   DelayCloud& c = s.cloud;
   c.n = rows;
   c.m = static_cast<std::size_t>(m);
+  // The previous dimension's tree and rows go first: the peak memory is one
+  // dimension's, not two.
   s.tree.reset();
+  std::vector<double>().swap(c.pts);
   s.tree = std::make_unique<DelayTree>(m, c, nanoflann::KDTreeSingleIndexAdaptorParams(16));
   s.tree->buildIndex();
   c.index.assign(s.tree->vAcc.begin(), s.tree->vAcc.end());
