@@ -2,12 +2,58 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "cvtplant/analysis/errors.hpp"
 #include "cvtplant/analysis/neighbours.hpp"
 #include "cvtplant/analysis/series.hpp"
 
 namespace cvt::analysis {
+namespace {
+
+// FNN and Cao need each row's nearest neighbour in dimension m = 1, 2, ...
+// with one spare sample per row for coordinate m + 1 (the rows of
+// delay_embed(x, m, tau, tau)). The rows are searched in the tree's leaf
+// order (consecutive queries then share the tree's nodes and leaves in
+// cache), the answers kept by row for the callers' sums in row order. The
+// neighbour found in dimension m - 1 is a candidate in dimension m (its
+// distance only grows by the new coordinate), so it starts the search with a
+// bound; the answer is the one an unhinted search gives (the nearest, the
+// lowest index among equals).
+class DimensionNeighbours {
+ public:
+  DimensionNeighbours(const std::vector<double>& x, int tau)
+      : nn_(x, tau), nbr_(x.size(), kNone), dist_(x.size()), n_(x.size()), tau_(static_cast<std::size_t>(tau)) {}
+  // Searches dimension m (Theiler window w); returns its rows.
+  std::size_t search(int m, int w) {
+    const std::size_t rows = n_ - static_cast<std::size_t>(m) * tau_;
+    nn_.set_dimension(m, rows);
+    for (std::size_t p = 0; p < nn_.size(); ++p) {
+      const std::size_t i = nn_.row_of(p);
+      if (i >= rows) continue;
+      std::size_t j = 0;
+      const bool ok = nn_.nearest(p, w, j, dist_[i], nbr_[i] == kNone ? DelayNeighbours::kNoHint : nbr_[i]);
+      nbr_[i] = ok && j < kNone ? static_cast<std::uint32_t>(j) : kNone;
+    }
+    return rows;
+  }
+  // Row i's neighbour and its distance in the dimension searched last.
+  bool neighbour(std::size_t i, std::size_t& j, double& d) const {
+    if (nbr_[i] == kNone) return false;
+    j = nbr_[i];
+    d = dist_[i];
+    return true;
+  }
+
+ private:
+  static constexpr std::uint32_t kNone = ~std::uint32_t{0};
+  DelayNeighbours nn_;
+  std::vector<std::uint32_t> nbr_;
+  std::vector<double> dist_;
+  std::size_t n_, tau_;
+};
+
+}  // namespace
 
 // docs/analysis.md#ami: histogram estimate with equal-width bins over the range.
 AmiResult average_mutual_information(const std::vector<double>& x, int max_lag, int bins) {
@@ -97,15 +143,14 @@ FnnResult false_nearest_neighbours(const std::vector<double>& x, const FnnOption
   r.theiler = opt.theiler >= 0 ? opt.theiler : default_theiler(x);
   const double ra = stddev(x);
   bool found = false;
+  DimensionNeighbours nn(x, opt.tau);
   for (int m = 1; m <= opt.m_max; ++m) {
-    // One spare sample per vector for the (m+1)-th coordinate.
-    const Embedding e = delay_embed(x, m, opt.tau, static_cast<std::size_t>(opt.tau));
-    const NeighbourIndex index(e);
+    const std::size_t rows = nn.search(m, r.theiler);
     std::size_t valid = 0, f_any = 0, f_r = 0, f_a = 0;
-    for (std::size_t i = 0; i < e.n; ++i) {
+    for (std::size_t i = 0; i < rows; ++i) {
       std::size_t j;
       double d;
-      if (!index.nearest(i, r.theiler, j, d) || !(d > 0)) continue;
+      if (!nn.neighbour(i, j, d) || !(d > 0)) continue;
       const double extra = std::abs(x[i + static_cast<std::size_t>(m) * opt.tau] - x[j + static_cast<std::size_t>(m) * opt.tau]);
       const bool c1 = extra / d > opt.rtol;
       const bool c2 = std::sqrt(d * d + extra * extra) / ra > opt.atol;
@@ -137,15 +182,15 @@ CaoResult cao(const std::vector<double>& x, const CaoOptions& opt) {
   CaoResult r;
   r.theiler = opt.theiler >= 0 ? opt.theiler : default_theiler(x);
   std::vector<double> E, Es;
+  DimensionNeighbours nn(x, opt.tau);
   for (int m = 1; m <= opt.m_max + 1; ++m) {
-    const Embedding e = delay_embed(x, m, opt.tau, static_cast<std::size_t>(opt.tau));
-    const NeighbourIndex index(e);
+    const std::size_t rows = nn.search(m, r.theiler);
     double sum_a = 0, sum_s = 0;
     std::size_t cnt = 0;
-    for (std::size_t i = 0; i < e.n; ++i) {
+    for (std::size_t i = 0; i < rows; ++i) {
       std::size_t j;
       double d;
-      if (!index.nearest(i, r.theiler, j, d) || !(d > 0)) continue;
+      if (!nn.neighbour(i, j, d) || !(d > 0)) continue;
       const double extra = x[i + static_cast<std::size_t>(m) * opt.tau] - x[j + static_cast<std::size_t>(m) * opt.tau];
       sum_a += std::sqrt(d * d + extra * extra) / d;
       sum_s += std::abs(extra);

@@ -80,69 +80,114 @@ struct LineCounter {
   }
 };
 
-// A run of recurrences along one line (a diagonal or a column), continued
-// while the next point comes from the next row.
-struct Run {
-  std::uint32_t last = 0;  // row of the last point + 1 (0: no run yet)
-  std::uint32_t len = 0;
-};
-
 // Upper-triangle streaming (docs/analysis.md#rqa-streaming): only pairs
 // j > i + w are visited, rows in order. Diagonal lines run along k = j - i;
 // vertical lines of the full matrix are the upper triangle's columns plus,
 // transposed, its rows (the band |i-j| <= w, never empty, separates the two
-// halves of every column, so no line crosses it).
+// halves of every column, so no line crosses it). Each row's points are a
+// bit set; against the previous row's, 64 columns at a time, a diagonal
+// run starts at (i, j) when (i - 1, j - 1) is not a point and ends after
+// (i - 1, j - 1) when (i, j) is not, a column's likewise with (i - 1, j).
+// Only a run's start row is stored (by diagonal k and by column j), read
+// back when it ends: work per run rather than per recurrence.
 class UpperLines {
  public:
-  UpperLines(std::size_t n, Histograms& h) : diag_(n + 1), col_(n + 1), bits_((n + 64) / 64, 0), h_(h) {}
+  UpperLines(std::size_t n, Histograms& h)
+      : diag_start_(n + 1, 0), col_start_(n + 1, 0), bits_{std::vector<std::uint64_t>((n + 64) / 64 + 1, 0),
+                                                           std::vector<std::uint64_t>((n + 64) / 64 + 1, 0)},
+        words_{std::vector<std::uint32_t>(n + 1), std::vector<std::uint32_t>(n + 1)}, h_(h) {}
 
-  // The recurrences (i, j), j > i + w, of row i, in any order.
+  // The recurrences (i, j), j > i + w, of row i, in any order; rows 0, 1, ...
   void row(std::uint32_t i, const std::uint32_t* js, std::size_t count) {
+    const int p = static_cast<int>(i & 1), q = p ^ 1;  // rows i and i - 1
+    std::vector<std::uint64_t>& cur = bits_[p];
+    std::vector<std::uint32_t>& words = words_[p];
+    // The bit set of row i - 2 is cleared for row i.
+    for (std::size_t t = 0; t < touched_[p]; ++t) cur[words[t]] = 0;
+    std::size_t touched = 0;
     for (std::size_t t = 0; t < count; ++t) {
       const std::uint32_t j = js[t];
-      extend(diag_[j - i], i, h_.diag);
-      extend(col_[j], i, h_.vert);
-      bits_[j >> 6] |= std::uint64_t{1} << (j & 63);
+      // The row's set of points, and each word of it once in `words`.
+      std::uint64_t& word = cur[j >> 6];
+      words[touched] = j >> 6;
+      touched += word == 0 ? 1 : 0;
+      word |= std::uint64_t{1} << (j & 63);
     }
-    // The row's horizontal runs: the lower triangle's vertical lines.
-    for (std::size_t t = 0; t < count; ++t) {
-      const std::uint32_t j = js[t];
-      if (j > 0 && has(j - 1)) continue;  // not the start of a run
-      std::uint32_t len = 1;
-      while (has(j + len)) ++len;
-      h_.vert[len] += 1;
+    touched_[p] = touched;
+    last_ = p;
+    const std::vector<std::uint64_t>& prev = bits_[q];
+    // Runs that end: points of row i - 1 not continued in row i.
+    for (std::size_t t = 0; t < touched_[q]; ++t) {
+      const std::uint32_t u = words_[q][t];
+      end_runs(u, prev[u] & ~((cur[u] >> 1) | (cur[u + 1] << 63)), i, 1, diag_start_, h_.diag);
+      end_runs(u, prev[u] & ~cur[u], i, 0, col_start_, h_.vert);
     }
-    for (std::size_t t = 0; t < count; ++t) bits_[js[t] >> 6] = 0;
+    // Runs that start: points of row i not continuing a run of row i - 1;
+    // and the row's horizontal runs, the lower triangle's vertical lines.
+    for (std::size_t t = 0; t < touched; ++t) {
+      const std::uint32_t w = words[t];
+      const std::uint64_t b = cur[w];
+      const std::uint64_t prev_below = w > 0 ? prev[w - 1] >> 63 : 0;
+      for (std::uint64_t m = b & ~((prev[w] << 1) | prev_below); m != 0; m &= m - 1)
+        diag_start_[(w << 6) + static_cast<std::uint32_t>(__builtin_ctzll(m)) - i] = i;
+      for (std::uint64_t m = b & ~prev[w]; m != 0; m &= m - 1)
+        col_start_[(w << 6) + static_cast<std::uint32_t>(__builtin_ctzll(m))] = i;
+      // A horizontal run starts at a set bit whose lower neighbour (the
+      // previous word's top bit across a word boundary) is clear.
+      const std::uint64_t below = w > 0 ? cur[w - 1] >> 63 : 0;
+      for (std::uint64_t m = b & ~((b << 1) | below); m != 0; m &= m - 1)
+        h_.vert[run_from(cur, w, __builtin_ctzll(m))] += 1;
+    }
   }
-  void flush() {
-    for (const Run& r : diag_)
-      if (r.len > 0) h_.diag[r.len] += 1;
-    for (const Run& r : col_)
-      if (r.len > 0) h_.vert[r.len] += 1;
+  // After the last row (i): its points end their diagonal and column runs.
+  void flush(std::uint32_t rows) {
+    for (std::size_t t = 0; t < touched_[last_]; ++t) {
+      const std::uint32_t u = words_[last_][t];
+      end_runs(u, bits_[last_][u], rows, 1, diag_start_, h_.diag);
+      end_runs(u, bits_[last_][u], rows, 0, col_start_, h_.vert);
+    }
   }
 
  private:
-  static void extend(Run& r, std::uint32_t i, std::vector<std::uint64_t>& hist) {
-    if (r.last == i && r.len > 0) {
-      ++r.len;
-    } else {
-      if (r.len > 0) hist[r.len] += 1;
-      r.len = 1;
+  // The runs through the points `ended` of word u of row i - 1, which row i
+  // does not continue: a diagonal's (shift 1) is stored at k = j + 1 - i,
+  // a column's (shift 0) at j.
+  static void end_runs(std::uint32_t u, std::uint64_t ended, std::uint32_t i, std::uint32_t shift,
+                       const std::vector<std::uint32_t>& start, std::vector<std::uint64_t>& hist) {
+    for (; ended != 0; ended &= ended - 1) {
+      const std::uint32_t j = (u << 6) + static_cast<std::uint32_t>(__builtin_ctzll(ended));
+      hist[i - start[j + shift - (shift != 0 ? i : 0)]] += 1;
     }
-    r.last = i + 1;
   }
-  bool has(std::uint32_t j) const { return (bits_[j >> 6] >> (j & 63)) & 1u; }
-  std::vector<Run> diag_, col_;
-  std::vector<std::uint64_t> bits_;  // row i's points, cleared after each row
+  // Length of the run of set bits from bit s of word w on (the bit set has
+  // a clear word past the last point, so it ends).
+  static std::uint32_t run_from(const std::vector<std::uint64_t>& b, std::uint32_t w, int s) {
+    const std::uint64_t rest = ~(b[w] >> s);  // 0 bits where the run goes on
+    if (rest != 0 && __builtin_ctzll(rest) < 64 - s) return static_cast<std::uint32_t>(__builtin_ctzll(rest));
+    std::uint32_t len = static_cast<std::uint32_t>(64 - s);
+    while (b[++w] == ~std::uint64_t{0}) len += 64;
+    return len + static_cast<std::uint32_t>(__builtin_ctzll(~b[w]));
+  }
+  std::vector<std::uint32_t> diag_start_;  // the start row of each diagonal k's current run
+  std::vector<std::uint32_t> col_start_;   // and of each column j's
+  std::vector<std::uint64_t> bits_[2];     // rows i and i - 1 (by parity): their points
+  std::vector<std::uint32_t> words_[2];    // the words each of them set
+  std::size_t touched_[2] = {0, 0};
+  int last_ = 0;  // parity of the last row
   Histograms& h_;
 };
 
 // Uniform grid over the first g = min(m, 3) coordinates with cells of side
-// h >= eps: every point within eps of y_i lies in the 3^g cells around y_i's
-// cell. Points are stored cell by cell, by index within a cell, with their
-// coordinates copied in that order so a cell is one contiguous block.
+// h just above eps / 2: every point within eps of y_i lies in the 5^g cells
+// around y_i's cell (two cells either way), and of those only the cells
+// whose box comes within eps of y_i are scanned, which leaves about half the
+// candidates of 3^g cells of side eps. Points are stored cell by cell, by
+// index within a cell, their coordinates copied in that order one array per
+// coordinate, so a cell is a contiguous block of each.
 class Grid {
  public:
+  static constexpr int kReach = 2;  // cells either way: h > eps / 2
+
   Grid(const Embedding& e, double eps) : e_(e), g_(std::min(e.m, 3)) {
     double span = 0;
     for (int d = 0; d < g_; ++d) {
@@ -153,13 +198,20 @@ class Grid {
       }
       span = std::max(span, hi_[d] - lo_[d]);
     }
-    // At most 2^20 cells per axis keeps the cell key in 60 bits; a coarser
-    // cell than eps only adds candidates.
-    side_ = std::max(eps, span / static_cast<double>(1 << 20));
+    // Slightly above eps / 2, so that two values within eps, each rounded
+    // into its cell, are at most two cells apart. At most 2^20 cells per
+    // axis keeps the cell key in 60 bits; a coarser cell only adds
+    // candidates.
+    side_ = std::max(0.5 * eps * (1 + 1e-6), span / static_cast<double>(1 << 20));
     // A series constant on the grid's axes with eps = 0 (the radius that a
     // target rate gives when every sampled distance is 0): one cell holds
     // every point, and a zero side would divide 0 by 0.
     if (!(side_ > 0)) side_ = 1.0;
+    // A cell's box is widened by this much before the distance to it is
+    // bounded: far above the rounding that put a point in its cell.
+    double reach = side_ + span;
+    for (int d = 0; d < g_; ++d) reach += std::abs(lo_[d]);
+    slack_ = 1e-7 * reach;
     for (int d = 0; d < g_; ++d) cells_[d] = cell_of(hi_[d], d) + 1;
     std::vector<std::pair<std::uint64_t, std::uint32_t>> order(e.n);
     for (std::size_t i = 0; i < e.n; ++i) order[i] = {key_of(e.row(i)), static_cast<std::uint32_t>(i)};
@@ -168,7 +220,7 @@ class Grid {
     pts_.resize(e.n * static_cast<std::size_t>(e.m));
     for (std::size_t p = 0; p < e.n; ++p) {
       idx_[p] = order[p].second;
-      std::copy(e.row(idx_[p]), e.row(idx_[p]) + e.m, pts_.begin() + static_cast<long>(p * e.m));
+      for (int d = 0; d < e.m; ++d) pts_[static_cast<std::size_t>(d) * e.n + p] = e.row(idx_[p])[d];
       if (p == 0 || order[p].first != order[p - 1].first) {
         keys_.push_back(order[p].first);
         start_.push_back(static_cast<std::uint32_t>(p));
@@ -180,11 +232,10 @@ class Grid {
   // Writes to `out` every j >= j_min with ||y_i - y_j||^2 <= eps2 (the
   // squared distance summed over the coordinates in order, as the k-d tree
   // does), cell by cell, increasing j within a cell; returns their count.
-  // `out` holds at least N entries.
+  // `out` holds at least N + 2 entries (the stores run one ahead).
   std::size_t within(std::size_t i, std::uint32_t j_min, double eps2, std::uint32_t* out) {
     const double* q = e_.row(i);
-    const std::uint64_t key = key_of(q);
-    if (key != cached_key_) neighbour_cells(q, key);
+    near_cells(q, eps2);
     switch (e_.m) {
       case 1:
         return scan<1>(q, j_min, eps2, out);
@@ -200,26 +251,48 @@ class Grid {
   }
 
  private:
-  // M > 0: the dimension known at compile time; 0: e_.m. The store is
-  // unconditional and the count advances on a recurrence (no branch to
-  // mispredict at a recurrence rate of tens of percent among candidates).
+  using v2d = double __attribute__((vector_size(16)));
+  using v2l = std::int64_t __attribute__((vector_size(16)));
+
+  // M > 0: the dimension known at compile time; 0: e_.m. Two candidates at
+  // a time: the same operations in the same order per lane as the scalar
+  // sum (squares of y_j - y_i added coordinate by coordinate from 0), so
+  // the test is bit for bit the k-d tree's. The stores are unconditional
+  // and the count advances on a recurrence (no branch to mispredict at a
+  // recurrence rate of tens of percent among candidates).
   template <int M>
   std::size_t scan(const double* q, std::uint32_t j_min, double eps2, std::uint32_t* out) const {
     const int m = M > 0 ? M : e_.m;
+    const std::size_t n = e_.n;
+    const v2d e2 = {eps2, eps2};
     std::size_t count = 0;
     for (std::size_t c = 0; c < n_near_; ++c) {
       const std::uint32_t* first = idx_.data() + near_[c].first;
       const std::uint32_t* last = idx_.data() + near_[c].second;
-      const std::uint32_t* p = std::lower_bound(first, last, j_min);
-      const double* y = pts_.data() + static_cast<std::size_t>(p - idx_.data()) * m;
-      for (; p != last; ++p, y += m) {
-        double d2 = 0;
+      std::size_t p = static_cast<std::size_t>(std::lower_bound(first, last, j_min) - idx_.data());
+      const std::size_t end = static_cast<std::size_t>(last - idx_.data());
+      for (; p + 2 <= end; p += 2) {
+        v2d d2 = {0, 0};
 #pragma GCC unroll 4
         for (int d = 0; d < m; ++d) {
-          const double diff = y[d] - q[d];
+          v2d y;
+          std::memcpy(&y, pts_.data() + static_cast<std::size_t>(d) * n + p, sizeof y);
+          const v2d diff = y - q[d];
           d2 += diff * diff;
         }
-        out[count] = *p;
+        const v2l hit = d2 <= e2;  // -1 or 0 per lane
+        out[count] = idx_[p];
+        count -= static_cast<std::size_t>(hit[0]);
+        out[count] = idx_[p + 1];
+        count -= static_cast<std::size_t>(hit[1]);
+      }
+      if (p < end) {
+        double d2 = 0;
+        for (int d = 0; d < m; ++d) {
+          const double diff = pts_[static_cast<std::size_t>(d) * n + p] - q[d];
+          d2 += diff * diff;
+        }
+        out[count] = idx_[p];
         count += d2 <= eps2;
       }
     }
@@ -235,40 +308,58 @@ class Grid {
       k = k * static_cast<std::uint64_t>(cells_[d]) + static_cast<std::uint64_t>(cell_of(y[d], d));
     return k;
   }
-  void neighbour_cells(const double* q, std::uint64_t key) {
-    cached_key_ = key;
+  // Squared distance from q's coordinate d to cell c's extent, widened by
+  // the slack: a lower bound for every point stored in that cell.
+  double gap2(const double* q, int d, std::int64_t c) const {
+    const double below = (lo_[d] + static_cast<double>(c) * side_ - slack_) - q[d];
+    const double above = q[d] - (lo_[d] + static_cast<double>(c + 1) * side_ + slack_);
+    const double gap = std::max(0.0, std::max(below, above));
+    return gap * gap;
+  }
+  // The occupied cells within reach of q whose box comes within eps of q.
+  // Cells along the last grid axis have consecutive keys: one bisection per
+  // line of cells, then steps along it.
+  void near_cells(const double* q, double eps2) {
     n_near_ = 0;
-    std::int64_t c0[3];
+    std::int64_t c0[3] = {0, 0, 0};
     for (int d = 0; d < g_; ++d) c0[d] = cell_of(q[d], d);
-    int total = 1;
-    for (int d = 0; d < g_; ++d) total *= 3;
-    for (int t = 0; t < total; ++t) {
+    const int last = g_ - 1;
+    const int lines = g_ == 1 ? 1 : (g_ == 2 ? 2 * kReach + 1 : (2 * kReach + 1) * (2 * kReach + 1));
+    for (int t = 0; t < lines; ++t) {
+      // The line's cell on the axes before the last one.
       std::uint64_t k = 0;
+      double base2 = 0;
       bool inside = true;
-      for (int d = 0, r = t; d < g_; ++d, r /= 3) {
-        const std::int64_t c = c0[d] + r % 3 - 1;
+      for (int d = 0, r = t; d < last; ++d, r /= 2 * kReach + 1) {
+        const std::int64_t c = c0[d] + r % (2 * kReach + 1) - kReach;
         inside = inside && c >= 0 && c < cells_[d];
-        k = k * static_cast<std::uint64_t>(cells_[d]) + static_cast<std::uint64_t>(c);
+        if (inside) base2 += gap2(q, d, c);
+        k = k * static_cast<std::uint64_t>(cells_[d]) + static_cast<std::uint64_t>(inside ? c : 0);
       }
-      if (!inside) continue;
-      const auto it = std::lower_bound(keys_.begin(), keys_.end(), k);
-      if (it == keys_.end() || *it != k) continue;
-      const std::size_t s = static_cast<std::size_t>(it - keys_.begin());
-      near_[n_near_++] = {start_[s], start_[s + 1]};
+      if (!inside || base2 > eps2) continue;
+      const std::int64_t c_from = std::max<std::int64_t>(0, c0[last] - kReach);
+      const std::int64_t c_to = std::min<std::int64_t>(cells_[last] - 1, c0[last] + kReach);
+      const std::uint64_t row = k * static_cast<std::uint64_t>(cells_[last]);
+      auto it = std::lower_bound(keys_.begin(), keys_.end(), row + static_cast<std::uint64_t>(c_from));
+      for (; it != keys_.end() && *it <= row + static_cast<std::uint64_t>(c_to); ++it) {
+        const std::int64_t c = static_cast<std::int64_t>(*it - row);
+        if (base2 + gap2(q, last, c) > eps2) continue;
+        const std::size_t s = static_cast<std::size_t>(it - keys_.begin());
+        near_[n_near_++] = {start_[s], start_[s + 1]};
+      }
     }
   }
 
   const Embedding& e_;
   int g_;
   double lo_[3] = {0, 0, 0}, hi_[3] = {0, 0, 0};
-  double side_ = 1;
+  double side_ = 1, slack_ = 0;
   std::int64_t cells_[3] = {1, 1, 1};
   std::vector<std::uint64_t> keys_;   // occupied cells, ascending
   std::vector<std::uint32_t> start_;  // their first point, plus the end
   std::vector<std::uint32_t> idx_;    // point indices, cell by cell
-  std::vector<double> pts_;           // their coordinates
-  std::uint64_t cached_key_ = ~std::uint64_t{0};
-  std::pair<std::uint32_t, std::uint32_t> near_[27];
+  std::vector<double> pts_;           // their coordinates: coordinate d of the p-th at [d n + p]
+  std::pair<std::uint32_t, std::uint32_t> near_[125];
   std::size_t n_near_ = 0;
 };
 
@@ -340,8 +431,9 @@ RqaResult rqa(const Embedding& e, const RqaOptions& opt) {
   Grid grid(e, eps);
   Histograms hist(e.n);
   UpperLines lines(e.n, hist);
-  std::vector<std::uint32_t> row(e.n);
+  std::vector<std::uint32_t> row(e.n + 2);
   std::uint64_t rec_upper = 0;
+  std::uint32_t rows = 0;
   const double eps2 = eps * eps;
   for (std::size_t i = 0; i + static_cast<std::size_t>(w) + 1 < e.n; ++i) {
     report(opt, i, e.n);
@@ -349,8 +441,9 @@ RqaResult rqa(const Embedding& e, const RqaOptions& opt) {
         grid.within(i, static_cast<std::uint32_t>(i + static_cast<std::size_t>(w) + 1), eps2, row.data());
     lines.row(static_cast<std::uint32_t>(i), row.data(), count);
     rec_upper += count;
+    rows = static_cast<std::uint32_t>(i + 1);
   }
-  lines.flush();
+  lines.flush(rows);
   if (opt.progress) opt.progress(static_cast<double>(e.n), static_cast<double>(e.n));
   return finish(hist, rec_upper, e, opt, eps, w);
 }

@@ -1,8 +1,14 @@
 // Delay and dimension estimators (docs/analysis.md#embedding).
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
 #include "cvtplant/analysis/embedding.hpp"
 #include "cvtplant/analysis/errors.hpp"
+#include "cvtplant/analysis/neighbours.hpp"
+#include "cvtplant/analysis/series.hpp"
 #include "signals.hpp"
 
 using namespace cvt::analysis;
@@ -72,4 +78,97 @@ TEST_CASE("embedding estimators reject bad input") {
   FnnOptions o;
   o.tau = 0;
   CHECK_THROWS_AS(false_nearest_neighbours(testsig::sine(500, 20), o), InputError);
+}
+
+namespace {
+
+// Brute-force nearest neighbour outside the Theiler window: the smallest
+// squared distance, the lowest index among equals (docs/analysis.md#fnn).
+bool brute_nearest(const Embedding& e, std::size_t i, int w, std::size_t& j, double& d) {
+  double best = 0;
+  bool found = false;
+  for (std::size_t k = 0; k < e.n; ++k) {
+    if (std::labs(static_cast<long>(k) - static_cast<long>(i)) <= w) continue;
+    double d2 = 0;
+    for (int c = 0; c < e.m; ++c) d2 += (e.row(i)[c] - e.row(k)[c]) * (e.row(i)[c] - e.row(k)[c]);
+    if (!found || d2 < best) {
+      best = d2;
+      j = k;
+      found = true;
+    }
+  }
+  d = std::sqrt(best);
+  return found;
+}
+
+// Kennel's two criteria over every point, as docs/analysis.md#fnn states them,
+// on the brute-force neighbours.
+std::vector<double> brute_fnn(const std::vector<double>& x, const FnnOptions& o, int theiler) {
+  const double ra = stddev(x);  // R_A, the library's (not under test here)
+  std::vector<double> out;
+  for (int m = 1; m <= o.m_max; ++m) {
+    const Embedding e = delay_embed(x, m, o.tau, static_cast<std::size_t>(o.tau));
+    std::size_t valid = 0, fals = 0;
+    for (std::size_t i = 0; i < e.n; ++i) {
+      std::size_t j;
+      double d;
+      if (!brute_nearest(e, i, theiler, j, d) || !(d > 0)) continue;
+      const double extra = std::abs(x[i + static_cast<std::size_t>(m * o.tau)] - x[j + static_cast<std::size_t>(m * o.tau)]);
+      ++valid;
+      fals += (extra / d > o.rtol || std::sqrt(d * d + extra * extra) / ra > o.atol);
+    }
+    out.push_back(static_cast<double>(fals) / static_cast<double>(valid));
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("FNN equals brute force (Lorenz, Henon, a coarsely quantised series with tied distances)") {
+  std::vector<double> quantised = testsig::lorenz_x(1500);
+  for (double& v : quantised) v = std::round(v * 2) / 2;  // few distinct values: many exact ties
+  struct Case {
+    std::vector<double> x;
+    int tau;
+  };
+  for (const Case& c : {Case{testsig::lorenz_x(2000), 15}, Case{testsig::henon_x(1500), 1}, Case{quantised, 15}}) {
+    FnnOptions o;
+    o.tau = c.tau;
+    o.m_max = 6;
+    const FnnResult r = false_nearest_neighbours(c.x, o);
+    const std::vector<double> ref = brute_fnn(c.x, o, r.theiler);
+    REQUIRE(r.fraction.size() == ref.size());
+    for (std::size_t k = 0; k < ref.size(); ++k) CHECK_MESSAGE(r.fraction[k] == ref[k], "m = " << k + 1);
+  }
+}
+
+TEST_CASE("delay neighbours: the brute-force neighbour and distance, with any hint, in every dimension") {
+  // Values on a coarse grid tie often: the lowest index among equals must
+  // win with and without a hint.
+  std::vector<double> x = testsig::white_noise(800, 3);
+  for (double& v : x) v = std::round(v * 3);
+  const int tau = 2;
+  DelayNeighbours nn(x, tau);
+  for (int m : {1, 2, 3, 4}) {
+    const Embedding e = delay_embed(x, m, tau, tau);
+    nn.set_dimension(m, e.n);
+    REQUIRE(nn.size() == e.n);
+    std::vector<bool> seen(e.n, false);
+    for (int w : {0, 5}) {
+      for (std::size_t p = 0; p < nn.size(); ++p) {
+        const std::size_t i = nn.row_of(p);
+        REQUIRE(i < e.n);
+        seen[i] = true;
+        std::size_t jb = 0, j = 0;
+        double db = 0, d = 0;
+        REQUIRE(brute_nearest(e, i, w, jb, db));
+        for (std::size_t hint : {DelayNeighbours::kNoHint, std::size_t{0}, i + 1, (i * 37) % e.n, e.n - 1, e.n + 10}) {
+          REQUIRE(nn.nearest(p, w, j, d, hint));
+          CHECK(j == jb);
+          CHECK(d == db);
+        }
+      }
+    }
+    CHECK(std::count(seen.begin(), seen.end(), true) == static_cast<long>(e.n));  // labels cover every row once
+  }
 }

@@ -40,6 +40,8 @@ struct Result {
 // CSV is written through a buffered shortest-round-trip writer and its cost
 // is timed apart from the plant's (docs/cli.md#run).
 struct Runner {
+  // The CSV's numeric columns at most: 25 outputs and energies, the states.
+  static constexpr int kMaxColumns = 25 + cvt::kRomMaxStates;
   const cvt::Scene& scene;
   std::FILE* csv;
   int every;
@@ -95,40 +97,28 @@ struct Runner {
       r.t_end_s = t;
       if (csv != nullptr && (i % every == 0 || sim.fault() != cvt::RomFault::none)) {
         const auto t0 = clock::now();
-        w.num(t);
-        w.num(d(o.omega1_rad_s));
-        w.num(d(o.omega2_rad_s));
-        w.num(d(o.clamp_force_N));
-        w.num(d(o.slip));
-        if (log & cvt::rom_log::torques) {
-          w.num(d(o.tau_in_Nm));
-          w.num(d(o.tau_load_Nm));
-          w.num(d(o.torque_transmitted_Nm));
-        }
-        if (log & cvt::rom_log::friction) {
-          w.num(d(o.friction1_N));
-          w.num(d(o.friction2_N));
-          w.num(d(o.v_rel1_m_s));
-          w.num(d(o.v_rel2_m_s));
-          w.integer(o.stick1 ? 1 : 0);
-          w.integer(o.stick2 ? 1 : 0);
-        }
-        if (log & cvt::rom_log::ratios) {
-          w.num(d(o.speed_ratio));
-          w.num(d(o.geometric_ratio));
-          w.num(d(o.radius1_m));
-          w.num(d(o.radius2_m));
-        }
-        if (log & cvt::rom_log::energy) {
+        // The row's numbers gathered first and written in one call
+        // (docs/cli.md#csv-numbers); the flags as 0/1.
+        double row[kMaxColumns];
+        int k = 0;
+        for (double v : {t, d(o.omega1_rad_s), d(o.omega2_rad_s), d(o.clamp_force_N), d(o.slip)}) row[k++] = v;
+        if (log & cvt::rom_log::torques)
+          for (double v : {d(o.tau_in_Nm), d(o.tau_load_Nm), d(o.torque_transmitted_Nm)}) row[k++] = v;
+        if (log & cvt::rom_log::friction)
+          for (double v : {d(o.friction1_N), d(o.friction2_N), d(o.v_rel1_m_s), d(o.v_rel2_m_s), o.stick1 ? 1.0 : 0.0,
+                           o.stick2 ? 1.0 : 0.0})
+            row[k++] = v;
+        if (log & cvt::rom_log::ratios)
+          for (double v : {d(o.speed_ratio), d(o.geometric_ratio), d(o.radius1_m), d(o.radius2_m)}) row[k++] = v;
+        if (log & cvt::rom_log::energy)
           for (double v : {double(e.stored_J), double(e.input_J), double(e.actuator_J), double(e.load_J),
                            double(e.friction_loss_J), double(e.damping_loss_J), double(e.residual_J())})
-            w.num(v);
-        }
+            row[k++] = v;
         if (log & cvt::rom_log::states) {
-          double xs[cvt::kRomMaxStates];
-          sim.state_si(xs);  // displacements in m whatever the scalar's internal units
-          for (int k = 0; k < n_states; ++k) w.num(xs[k]);
+          sim.state_si(row + k);  // displacements in m whatever the scalar's internal units
+          k += n_states;
         }
+        w.nums(row, static_cast<std::size_t>(k));
         w.text(cvt::rom_fault_name(sim.fault()));
         w.end_row();
         output_time += clock::now() - t0;
