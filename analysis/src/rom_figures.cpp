@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -115,7 +116,29 @@ std::vector<std::string> rom_scene_figures(const cvt::Scene& scene, const std::s
   }
   const std::string title = rom_scene_title(scene, name);
   const int n = static_cast<int>(panels().size());
-  const int height = 170 * n + 90;
+  // 210 px a panel: the longest axis title ("lump displacement [mm]") fits.
+  const int height = 210 * n + 90;
+  // The speed ratio passes through infinity when a start from rest turns the
+  // driven pulley backwards; its axis spans the 2nd to 98th percentile of the
+  // defined samples (padded), so the settled ratio is readable and a spike
+  // runs off the panel's edge instead of flattening everything else.
+  std::string ratio_range;
+  {
+    const std::vector<double>& w2 = run.signal.at("omega2");
+    const std::vector<double>& ratio = run.signal.at("speed_ratio");
+    std::vector<double> v;
+    for (std::size_t i = 0; i < ratio.size(); ++i)
+      if (std::fabs(w2[i]) >= kRatioMinOmega2_rad_s && std::isfinite(ratio[i])) v.push_back(ratio[i]);
+    if (v.size() >= 50) {
+      std::sort(v.begin(), v.end());
+      const double lo = v[v.size() / 50], hi = v[v.size() - 1 - v.size() / 50];
+      const double pad = std::max(0.1 * (hi - lo), 0.05 * std::max(std::fabs(lo), std::fabs(hi)) + 1e-9);
+      std::ostringstream r;
+      r.precision(6);
+      r << "[" << lo - pad << ":" << hi + pad << "]";
+      ratio_range = r.str();
+    }
+  }
   auto s = open_text_file(D + "scene.gp");
   // Panels share the time axis: equal left/right margins, tick labels and
   // the axis title on the bottom panel only; each legend right of its panel,
@@ -136,6 +159,10 @@ std::vector<std::string> rom_scene_figures(const cvt::Scene& scene, const std::s
       s << "set format x '%g'\nset xlabel 'time t [s]'\n";
     else
       s << "set format x ''\nunset xlabel\n";
+    if (std::string(p.curves.front().first) == "speed_ratio" && !ratio_range.empty())
+      s << "set yrange " << ratio_range << "\n";
+    else
+      s << "set autoscale y\n";
     s << "set ylabel '" << p.quantity << " [" << unit[k] << "]'\nplot ";
     for (std::size_t c = 0; c < p.curves.size(); ++c) {
       const std::string legend = p.curves[c].second;

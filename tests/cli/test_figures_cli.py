@@ -5,6 +5,7 @@ expected number of stacked panels, and labelled (the gnuplot script the
 command ran names the units and the parameters)."""
 import json
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -46,7 +47,7 @@ class Figures(unittest.TestCase):
         files = [os.path.basename(f) for f in json.loads(r.stdout)["files"]]
         self.assertEqual(files, ["scene_time_history.png", "scene_phase_lump1.png", "scene_phase_lump2.png"])
         # Six panels: speeds, ratio, forces, slip, lump displacement, lump velocity.
-        self.look(os.path.join(out, "scene_time_history.png"), 1100, 6 * 170 + 90, 6)
+        self.look(os.path.join(out, "scene_time_history.png"), 1100, 6 * 210 + 90, 6)
         for lump in (1, 2):
             self.look(os.path.join(out, "scene_phase_lump%d.png" % lump), 800, 700, 1)
         with open(os.path.join(out, "scene.gp")) as f:
@@ -66,6 +67,14 @@ class Figures(unittest.TestCase):
         for r in data:
             ratio = r[names.index("speed_ratio")]
             self.assertEqual(ratio != ratio, abs(r[names.index("omega2")]) < 1.0)
+        # The ratio's axis spans its 2nd to 98th percentile (padded), not the start's spike.
+        ratios = sorted(r[names.index("speed_ratio")] for r in data if r[names.index("speed_ratio")] == r[names.index("speed_ratio")])
+        lo, hi = ratios[len(ratios) // 50], ratios[len(ratios) - 1 - len(ratios) // 50]
+        m = re.search(r"set yrange \[([-0-9.e+]+):([-0-9.e+]+)\]\nset ylabel 'speed ratio", gp)
+        self.assertIsNotNone(m, "the ratio panel has its own y range")
+        self.assertLess(float(m.group(1)), lo)
+        self.assertGreater(float(m.group(2)), hi)
+        self.assertLess(float(m.group(2)) - float(m.group(1)), 1.5 * (hi - lo) + 0.2 * max(abs(lo), abs(hi)))
         # The title names the scene, the scalar, the integrator and the frame step.
         self.assertIn("seed-case2: double, ros2 x 1 substeps, frame 1 ms", gp)
         # Only the bottom panel carries the time axis.
