@@ -13,14 +13,19 @@ namespace cvt::rom_cost {
 // One row: a built-in scene run with the plant of the visited mask, at
 // `substeps` per frame (0: the scene's own setting), with or without the
 // energy ledger (Scene::energy_ledger) and with the scene's integrator or
-// the one named in `integrator`.
+// the one named in `integrator`; `edit` changes the scene's parameters
+// (a scene file's [params], e.g. fixed sheaves).
 struct Case {
   const char* label;
   const char* scene;
   int substeps;
   bool energy_ledger = true;
   const char* integrator = nullptr;
+  void (*edit)(Scene&) = nullptr;
 };
+
+// tools/scenes/seed-case1-tension.toml: the seed case on fixed sheaves.
+inline void fixed_sheaves(Scene& s) { s.params.fixed_sheaves = true; }
 
 // The feature mask is a template argument of the plant, so the rows are
 // visited at compile time: v.template visit<Mask>(row) for every row.
@@ -59,6 +64,11 @@ void for_each_case(Visitor&& v) {
   v.template visit<f::axial | f::road_load | f::wedging>(
       Case{"scene/ratio-control/no-ledger", "ratio-control", 0, false});
   v.template visit<f::axial | f::road_load | f::wedging>(Case{"scene/clamp-step+wedging-on-stop", "clamp-step", 0});
+  // The chain's tension state (docs/rom.md#tension): the seed case on fixed
+  // sheaves (tools/scenes/seed-case1-tension.toml), and with its clamping
+  // actuator (the sheave held off its stop by the 3.3 kN).
+  v.template visit<f::tension>(Case{"scene/seed-case1-tension", "seed-case1", 0, true, nullptr, &fixed_sheaves});
+  v.template visit<f::axial | f::tension>(Case{"feature/seed-case1+tension", "seed-case1", 0});
 }
 
 // Where the measured frame starts: the scene run on its own input profiles
@@ -79,6 +89,7 @@ struct Frame {
     s.energy_ledger = c.energy_ledger;
     if (!c.energy_ledger) s.log &= ~rom_log::energy;
     if (c.integrator != nullptr) parse_method(c.integrator, s.method);
+    if (c.edit != nullptr) c.edit(s);
     return s;
   }
 

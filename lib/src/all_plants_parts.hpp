@@ -1,7 +1,7 @@
 #pragma once
 // The parts of AllRomPlants<T>::build. Each part is explicitly instantiated
 // per scalar type in its own translation unit (all_plants_<scalar>_<part>.cpp),
-// so that a two-core build compiles the 64 plants in parallel.
+// so that a two-core build compiles the 88 plants in parallel.
 #include <cstdint>
 
 #include "cvtplant/scene/all_plants.hpp"
@@ -24,6 +24,12 @@ IRomSimulator<T>* build_wedging(std::uint32_t features, const RomParams& p, cons
   return RomPlantSet<T, 17, 19, 21, 23, 25, 27, 29, 31>::build(features, p, c, storage);
 }
 
+// Masks 32..39: tension with axial, road load and deformation (docs/rom.md#tension).
+template <class T>
+IRomSimulator<T>* build_tension(std::uint32_t features, const RomParams& p, const RomSimConfig& c, void* storage) {
+  return RomPlantSet<T, 32, 33, 34, 35, 36, 37, 38, 39>::build(features, p, c, storage);
+}
+
 // Instantiated in the part translation units only.
 extern template IRomSimulator<double>* build_low<double>(std::uint32_t, const RomParams&, const RomSimConfig&,
                                                 void*);
@@ -40,6 +46,12 @@ extern template IRomSimulator<float>* build_wedging<float>(std::uint32_t, const 
 extern template IRomSimulator<q16_16>* build_low<q16_16>(std::uint32_t, const RomParams&, const RomSimConfig&,
                                                 void*);
 extern template IRomSimulator<q16_16>* build_polygon<q16_16>(std::uint32_t, const RomParams&, const RomSimConfig&,
+                                                    void*);
+extern template IRomSimulator<double>* build_tension<double>(std::uint32_t, const RomParams&, const RomSimConfig&,
+                                                    void*);
+extern template IRomSimulator<float>* build_tension<float>(std::uint32_t, const RomParams&, const RomSimConfig&,
+                                                  void*);
+extern template IRomSimulator<q16_16>* build_tension<q16_16>(std::uint32_t, const RomParams&, const RomSimConfig&,
                                                     void*);
 
 }  // namespace cvt::all_plants_detail

@@ -25,7 +25,7 @@ DIMENSIONLESS_PREFIXES = ("ratio", "rel_")  # rel_rms: relative RMS error
 # Dimensionless names: counts, indices, tolerances and ratios.
 DIMENSIONLESS = {
     "steps", "frames", "substeps", "samples", "links", "sheaves", "states", "case", "iterations", "residuals",
-    "rhs_evals", "jac_evals", "linear_setups", "newton_iters", "error_test_fails", "newton_fails", "jacobian_nnz",
+    "creep_strain", "rhs_evals", "jac_evals", "linear_setups", "newton_iters", "error_test_fails", "newton_fails", "jacobian_nnz",
     "plant_evaluations", "plant_faults", "status", "points", "rtol", "slip", "max_abs_slip", "ci_level",
     "symmetry_zero_exponents", "zero_index", "wrap_links_end", "cost_start", "cost_end", "rms_residual_start",
     "rms_residual_end", "ref_substeps", "atol", "rejected", "rhs", "jacobians", "factorizations", "solves",

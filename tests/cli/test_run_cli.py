@@ -183,6 +183,33 @@ class Run(unittest.TestCase):
             self.assertLess(float(last["geometric_ratio"]), 0.85 * float(first["geometric_ratio"]))
             self.assertAlmostEqual(float(first["geometric_ratio"]), 0.1143 / 0.0762, places=9)
 
+    def test_tension_scene_logs_the_chain_tension(self):
+        # docs/rom.md#tension: the seed case on fixed sheaves; the tension log
+        # group and the JSON's final.tension.
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "t.csv")
+            r = run("run", "--scene", os.path.join(SCENES, "seed-case1-tension.toml"), "--t-end", "3", "--csv", out,
+                    "--json")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            j = json.loads(r.stdout)
+            with open(out) as f:
+                rows = list(csv.DictReader(f))
+        self.assertEqual(j["features"], "tension")
+        t = j["final"]["tension"]
+        self.assertTrue(t["sheave_on_stop"])
+        last = rows[-1]
+        self.assertAlmostEqual(float(last["T_tight"]), t["T_tight_N"], places=6)
+        self.assertAlmostEqual(float(last["T_slack"]), t["T_slack_N"], places=6)
+        # The creep strain is dT / (kL + T_s), kL = 2700 N, and the chain runs
+        # faster than r2/r1 makes it by about that much.
+        dT = t["T_tight_N"] - t["T_slack_N"]
+        self.assertAlmostEqual(t["creep_strain"], dT / (2700.0 + t["T_slack_N"]), places=9)
+        ratio = float(last["speed_ratio"])
+        self.assertGreater(ratio, 1.5 * (1.0 + 0.8 * t["creep_strain"]))
+        self.assertLess(abs(j["energy"]["residual_rel"]), 1e-4)
+        for h in ("T_tight", "T_slack", "T_centrifugal", "creep_strain", "sheave_on_stop"):
+            self.assertIn(h, rows[0])
+
 
 class Adaptive(unittest.TestCase):
     """`run --solver adaptive` (docs/numerics.md#adaptive)."""
@@ -312,6 +339,27 @@ class BadInput(unittest.TestCase):
             self.assert_usage(run("run", "--scene", p), p + ":2:", "features", "axial")
             p = write(d, "l.toml", 'base = "tip-in"\nfeatures = ["axial", "wedging"]\n[params]\nbeta0_deg = 76\n')
             self.assert_usage(run("run", "--scene", p), p + ":4:", "beta0_deg", "self-locking")
+
+    def test_tension_keys_and_refusals(self):
+        # (file text after the base scene, extra flags, the parts the one-line error names)
+        tension = 'features = ["tension"]\n[params]\n'
+        cases = [
+            (tension + "creep_gain = -1\n", (), (":4:", "params.creep_gain", "[0, 10]")),
+            (tension + "chain_mass_kg_m = nan\n", (), (":4:", "params.chain_mass_kg_m", "finite")),
+            (tension + "wrap_excess_share = 0.7\n", (), (":4:", "params.wrap_excess_share")),
+            (tension + 'fixed_sheaves = "yes"\n', (), (":4:", "params.fixed_sheaves", "true or false")),
+            ('features = ["axial", "tension"]\n[params]\nfixed_sheaves = true\n', (),
+             (":4:", "params.fixed_sheaves", "axial")),
+            ('features = ["axial", "wedging", "tension"]\n', (), (":2:", "features", "wedging")),
+            ('log = ["torques", "tension"]\n', (), (":2:", "log", "tension feature")),
+            (tension + "chain_stiffness_N = 4e7\n", ("--scalar", "fixed"), ("chain_stiffness_N", "fixed-point range")),
+        ]
+        with tempfile.TemporaryDirectory() as d:
+            for i, (text, flags, parts) in enumerate(cases):
+                p = write(d, "t%d.toml" % i, 'base = "seed-case1"\n' + text)
+                self.assert_usage(run("run", "--scene", p, *flags), *[p + x if x.startswith(":") else x for x in parts])
+        tension = os.path.join(SCENES, "seed-case1-tension.toml")
+        self.assert_usage(run("run", "--scene", tension, "--solver", "adaptive"), "--solver adaptive", "tension")
 
     def test_rom_accuracy_refuses_a_plant_the_scalar_lacks(self):
         # The fixed-point plants have no wedging: the candidates are refused

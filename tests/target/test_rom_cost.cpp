@@ -63,6 +63,7 @@ struct CountFrames {
   std::uint32_t core = 0, all_x4 = 0, core_x4 = 0, seed_case1_wedging = 0;
   std::uint32_t ratio_control = 0, on_stop = 0;
   std::uint32_t seed_case1_no_ledger = 0, seed_case1_lean = 0, ratio_control_no_ledger = 0;
+  std::uint32_t seed_case1_tension = 0, seed_case1_axial_tension = 0;
 
   template <std::uint32_t F>
   void visit(const rom_cost::Case& c) {
@@ -77,6 +78,8 @@ struct CountFrames {
     if (str_is(c.label, "scene/seed-case1/no-ledger")) seed_case1_no_ledger = n;
     if (str_is(c.label, "scene/seed-case1/no-ledger/lin-impl-euler")) seed_case1_lean = n;
     if (str_is(c.label, "scene/ratio-control/no-ledger")) ratio_control_no_ledger = n;
+    if (str_is(c.label, "scene/seed-case1-tension")) seed_case1_tension = n;
+    if (str_is(c.label, "feature/seed-case1+tension")) seed_case1_axial_tension = n;
   }
 
   static bool str_is(const char* a, const char* b) { return cvt::target::str_equal(a, b); }
@@ -118,6 +121,13 @@ CVT_TARGET_TEST(rom_frame_instruction_counts_float) {
   CHECK_LT(counts.seed_case1_lean, counts.seed_case1_no_ledger);
   CHECK_LT(counts.seed_case1_no_ledger, counts.seed_case1 - counts.seed_case1 / 20u);
   CHECK_LT(counts.ratio_control_no_ledger, counts.ratio_control - counts.ratio_control / 20u);
+  // The chain's tension state (docs/rom.md#tension): the seed case on fixed
+  // sheaves, 2,642 on this image (no actuator states, so below seed-case1),
+  // and with the clamping actuator 3,165, 11 % over seed-case1 (one division,
+  // the creep and axial-force chain rule); bounds 4 % above.
+  CHECK_LE(counts.seed_case1_tension, 2750u);
+  CHECK_LE(counts.seed_case1_axial_tension, 3290u);
+  CHECK_GT(counts.seed_case1_axial_tension, counts.seed_case1);
 }
 
 // The default scene in q16.16, for FPU-less targets: every product is a

@@ -11,6 +11,7 @@
 #include "cvtplant/plant/oscillator.hpp"
 #include "cvtplant/plant/rom_step.hpp"
 #include "cvtplant/scalar/fixed_eigen.hpp"
+#include "rom_jacobian_check.hpp"
 
 namespace {
 
@@ -55,27 +56,8 @@ cvt::RomInitial driving_state(double omega2_rad_s) {
 
 template <std::uint32_t F>
 void check_jacobian_against_duals(const cvt::RomParams& p, const cvt::RomInitial& x0, double clamp_N) {
-  using Rom = cvt::CvtRom<double, F>;
-  Rom rom(p);
-  rom.inputs.tau_in_Nm = 80.0;
-  rom.inputs.tau_load_Nm = 40.0;
-  rom.inputs.clamp_N = clamp_N;
-  typename Rom::State x = rom.initial_state(x0);
-  // Move every state off its symmetric value so each partial is exercised.
-  for (int i = 0; i < Rom::kStates; ++i) x(i) += 1e-3 * (i + 1);
-  typename Rom::Jacobian Ja, Jd;
-  rom.jacobian(x, Ja);
-  cvt::jacobian_by_duals(rom, x, Jd);
-  for (int i = 0; i < Rom::kStates; ++i)
-    for (int j = 0; j < Rom::kStates; ++j) {
-      CAPTURE(i);
-      CAPTURE(j);
-      // A held pulley's column is zero by design (docs/rom.md#jacobian): it
-      // multiplies an increment that is always zero.
-      const bool held_column = (j == 0 && p.hold_driver_speed) || (j == 1 && p.hold_driven_speed);
-      // Both are exact derivatives of the same expression: only rounding differs.
-      CHECK(Ja(i, j) == doctest::Approx(held_column ? 0.0 : Jd(i, j)).epsilon(1e-10).scale(1.0));
-    }
+  const auto rom = rom_test::loaded_plant<F>(p, clamp_N);
+  rom_test::check_jacobian_at(rom, rom_test::offset_state(rom, x0), false);
 }
 
 }  // namespace
@@ -126,6 +108,9 @@ TEST_CASE("ROM analytic Jacobian equals the dual-number Jacobian for every featu
     check_jacobian_against_duals<f::deformation>(p, x0, 3000.0);
     check_jacobian_against_duals<f::polygon>(p, x0, 3000.0);
     check_jacobian_against_duals<f::basic>(p, x0, 3000.0);
+    // The chain's tension state (docs/rom.md#tension; its regimes in test_rom_tension.cpp).
+    check_jacobian_against_duals<f::tension>(p, x0, 3000.0);
+    check_jacobian_against_duals<f::tension | f::basic>(p, x0, 3000.0);
   }
   // Near stick, where the atan slope dominates (case 2, the last law above).
   x0.omega2_rad_s = 100.0;
@@ -224,6 +209,13 @@ TEST_CASE("fixed-point ROM: derivative and Jacobian in its units equal the SI on
     // carries ~2e-4 m/s at 150 rad/s, and the steep friction force follows
     // (docs/rom.md#fixed-point): no built-in scene uses it in fixed point.
     check_fixed_units<f::basic>(p, x0, 4000.0, 1e-2);
+    // The chain's tension state (docs/rom.md#tension): on the stop at 11.4 m/s
+    // and 4 kN, clamped at 1.5 kN, and on fixed sheaves.
+    check_fixed_units<f::tension>(p, x0, 4000.0);
+    check_fixed_units<f::tension | f::axial | f::road_load | f::deformation>(p, x0, 1500.0);
+    cvt::RomParams pf = p;
+    pf.fixed_sheaves = true;
+    check_fixed_units<f::tension | f::road_load>(pf, x0, 0.0);
   }
 }
 
@@ -269,8 +261,16 @@ TEST_CASE("ROM structured linear solve equals the dense LU step for every featur
     // Wedging: the 6x6 core with the bolt and radial velocities.
     check_structured_step<f::axial | f::wedging>(p, x0, m);
     check_structured_step<f::all>(p, x0, m);
+    // The chain's tension state: its partials fill the core rows' columns
+    // x_i and delta, which the elimination takes in (docs/rom.md#tension).
+    check_structured_step<f::tension>(p, x0, m);
+    check_structured_step<f::tension | f::basic>(p, x0, m);
+    p.fixed_sheaves = true;
+    check_structured_step<f::tension | f::road_load>(p, x0, m);
+    p.fixed_sheaves = false;
     p.hold_driver_speed = true;  // a held pulley: identity row and column
     check_structured_step<f::axial | f::road_load>(p, x0, m);
+    check_structured_step<f::tension | f::axial>(p, x0, m);
     p.hold_driver_speed = false;
   }
 }

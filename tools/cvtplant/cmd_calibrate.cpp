@@ -47,6 +47,14 @@ constexpr Fittable kFittable[] = {
     {"normal_load_factor", &cvt::RomParams::normal_load_factor},
     {"entry_load_share", &cvt::RomParams::entry_load_share, true},
     {"wrap_tension_share", &cvt::RomParams::wrap_tension_share, true},
+    // The chain's tension state (docs/rom.md#tension); wrap_excess_share is fitted positive.
+    {"chain_mass_kg_m", &cvt::RomParams::chain_mass_kg_m},
+    {"chain_stiffness_N", &cvt::RomParams::chain_stiffness_N},
+    {"creep_gain", &cvt::RomParams::creep_gain},
+    {"stop_tension_N", &cvt::RomParams::stop_tension_N},
+    {"stop_tension_share", &cvt::RomParams::stop_tension_share, true},
+    {"centrifugal_gain", &cvt::RomParams::centrifugal_gain},
+    {"wrap_excess_share", &cvt::RomParams::wrap_excess_share},
 };
 
 double fitted_value(const Fittable& f, double start, double theta) {
@@ -187,7 +195,8 @@ Action register_calibrate(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--fit", opt->fit,
                   "Parameters to fit, comma-separated: k1_N_m, c1_Ns_m, k2_N_m, c2_Ns_m, lump_mass_kg, r1_m, r2_m, "
-                  "normal_load_factor, entry_load_share, wrap_tension_share")
+                  "normal_load_factor, entry_load_share, wrap_tension_share, chain_mass_kg_m, chain_stiffness_N, "
+                  "creep_gain, centrifugal_gain, stop_tension_N, stop_tension_share, wrap_excess_share")
       ->capture_default_str();
   sub->add_option("--out", opt->out, "Write the fitted parameters as a parameter file (TOML [params])");
   sub->add_option("--header", opt->header,

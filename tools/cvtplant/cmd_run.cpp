@@ -32,6 +32,9 @@ struct Result {
          scale = 0;
   double mean_w1 = 0, mean_w2 = 0, mean_fax = 0, max_abs_slip = 0;
   double final_w1 = 0, final_w2 = 0, final_fax = 0, final_slip = 0, final_torque = 0;
+  // The chain's tension state at the end (feature tension, docs/rom.md#tension).
+  double final_T_tight = 0, final_T_slack = 0, final_T_c = 0, final_creep = 0;
+  bool final_on_stop = false;
 };
 
 // The frame loop on the scene's plant (any scalar, any feature set), on the
@@ -40,8 +43,9 @@ struct Result {
 // CSV is written through a buffered shortest-round-trip writer and its cost
 // is timed apart from the plant's (docs/cli.md#run).
 struct Runner {
-  // The CSV's numeric columns at most: 25 outputs and energies, the states.
-  static constexpr int kMaxColumns = 25 + cvt::kRomMaxStates;
+  // The CSV's numeric columns at most: 30 outputs and energies (5 + 3
+  // torques + 6 friction + 4 ratios + 7 energy + 5 tension), the states.
+  static constexpr int kMaxColumns = 30 + cvt::kRomMaxStates;
   const cvt::Scene& scene;
   std::FILE* csv;
   int every;
@@ -74,6 +78,8 @@ struct Runner {
           w.text(h);
       if (log & cvt::rom_log::states)
         for (int k = 0; k < n_states; ++k) w.text(cvt::rom_state_name(features, k));
+      if (log & cvt::rom_log::tension)
+        for (const char* h : {"T_tight", "T_slack", "T_centrifugal", "creep_strain", "sheave_on_stop"}) w.text(h);
       w.text("fault");
       w.end_row();
       output_time += clock::now() - t0;
@@ -118,6 +124,11 @@ struct Runner {
           sim.state_si(row + k);  // displacements in m whatever the scalar's internal units
           k += n_states;
         }
+        if (log & cvt::rom_log::tension) {
+          for (const T& v : {o.tension_tight_N, o.tension_slack_N, o.centrifugal_tension_N, o.creep_strain})
+            row[k++] = d(v);
+          row[k++] = o.sheave_on_stop ? 1.0 : 0.0;
+        }
         w.nums(row, static_cast<std::size_t>(k));
         w.text(cvt::rom_fault_name(sim.fault()));
         w.end_row();
@@ -138,6 +149,11 @@ struct Runner {
         r.final_fax = d(o.clamp_force_N);
         r.final_slip = d(o.slip);
         r.final_torque = d(o.torque_transmitted_Nm);
+        r.final_T_tight = d(o.tension_tight_N);
+        r.final_T_slack = d(o.tension_slack_N);
+        r.final_T_c = d(o.centrifugal_tension_N);
+        r.final_creep = d(o.creep_strain);
+        r.final_on_stop = o.sheave_on_stop;
       }
       if ((i & 4095) == 0) progress.update(t);
       // A failed write (closed pipe, full disk) stops the run; the caller reports it.
@@ -253,6 +269,9 @@ cvtcli::Action register_run(CLI::App& app) {
       if ((s.features & cvt::rom_feature::wedging) != 0u)
         throw cvtcli::UsageError{"--solver adaptive: the wedging plant keeps the frame stepper (its driven actuator "
                                  "and end stops act per frame; docs/numerics.md#adaptive)"};
+      if ((s.features & cvt::rom_feature::tension) != 0u)
+        throw cvtcli::UsageError{"--solver adaptive: the tension plants run on the frame stepper only (the adaptive "
+                                 "solver is compiled for the masks without tension; docs/numerics.md#adaptive)"};
     } else {
       for (const char* flag : {"--rtol", "--atol"})
         if (sub->count(flag) > 0) throw cvtcli::UsageError{std::string(flag) + " needs --solver adaptive"};
@@ -337,6 +356,12 @@ cvtcli::Action register_run(CLI::App& app) {
                     {"F_ax_N", r.final_fax},
                     {"slip", r.final_slip},
                     {"torque_transmitted_Nm", r.final_torque}};
+      if ((s.features & cvt::rom_feature::tension) != 0u)
+        j["final"]["tension"] = {{"T_tight_N", r.final_T_tight},
+                                 {"T_slack_N", r.final_T_slack},
+                                 {"T_centrifugal_N", r.final_T_c},
+                                 {"creep_strain", r.final_creep},
+                                 {"sheave_on_stop", r.final_on_stop}};
       j["wall_s"] = r.wall_s;
       j["output_wall_s"] = r.output_s;
       j["ns_per_frame"] = ns_frame;

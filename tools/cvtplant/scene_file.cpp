@@ -4,6 +4,7 @@
 #include <toml++/toml.h>
 
 #include <cmath>
+#include <iterator>
 #include <map>
 #include <set>
 #include <vector>
@@ -27,12 +28,14 @@ constexpr FeatureName kFeatureNames[] = {{"axial", cvt::rom_feature::axial},
                                          {"road_load", cvt::rom_feature::road_load},
                                          {"deformation", cvt::rom_feature::deformation},
                                          {"polygon", cvt::rom_feature::polygon},
-                                         {"wedging", cvt::rom_feature::wedging}};
+                                         {"wedging", cvt::rom_feature::wedging},
+                                         {"tension", cvt::rom_feature::tension}};
 constexpr FeatureName kLogNames[] = {{"torques", cvt::rom_log::torques},
                                      {"friction", cvt::rom_log::friction},
                                      {"ratios", cvt::rom_log::ratios},
                                      {"energy", cvt::rom_log::energy},
-                                     {"states", cvt::rom_log::states}};
+                                     {"states", cvt::rom_log::states},
+                                     {"tension", cvt::rom_log::tension}};
 
 // Reads one TOML document into a Scene, remembering where every key was.
 class Reader {
@@ -202,7 +205,8 @@ class Reader {
                  "speed_limit_rad_s", "actuator_tau_s", "clamp_max_N", "sheave_mass_kg", "sheave_damping_Ns_m", "K_ax_N_m", "road_T0_Nm",
                  "road_cv_Nms_rad", "road_ca_Nms2_rad2", "road_w_eps_rad_s", "zeta1_rad", "zeta2_rad", "pitch_m",
                  "driven_clamp_N", "radial_mass_kg", "radial_damping_Ns_m", "radial_travel_m", "radial_stop_N_m",
-                 "wrap_tension_share"});
+                 "wrap_tension_share", "chain_mass_kg_m", "chain_stiffness_N", "creep_gain", "stop_tension_N",
+                 "stop_tension_share", "centrifugal_gain", "wrap_excess_share", "fixed_sheaves"});
     p.r1_m = number(t, pre, "r1_m", p.r1_m);
     p.r2_m = number(t, pre, "r2_m", p.r2_m);
     p.beta0_rad = number(t, pre, "beta0_deg", p.beta0_rad / kDegToRad) * kDegToRad;
@@ -238,6 +242,14 @@ class Reader {
     p.radial_travel_m = number(t, pre, "radial_travel_m", p.radial_travel_m);
     p.radial_stop_N_m = number(t, pre, "radial_stop_N_m", p.radial_stop_N_m);
     p.wrap_tension_share = number(t, pre, "wrap_tension_share", p.wrap_tension_share);
+    p.chain_mass_kg_m = number(t, pre, "chain_mass_kg_m", p.chain_mass_kg_m);
+    p.chain_stiffness_N = number(t, pre, "chain_stiffness_N", p.chain_stiffness_N);
+    p.creep_gain = number(t, pre, "creep_gain", p.creep_gain);
+    p.stop_tension_N = number(t, pre, "stop_tension_N", p.stop_tension_N);
+    p.stop_tension_share = number(t, pre, "stop_tension_share", p.stop_tension_share);
+    p.centrifugal_gain = number(t, pre, "centrifugal_gain", p.centrifugal_gain);
+    p.wrap_excess_share = number(t, pre, "wrap_excess_share", p.wrap_excess_share);
+    p.fixed_sheaves = boolean(t, pre, "fixed_sheaves", p.fixed_sheaves);
   }
 
   // A parameter file (`cvtplant calibrate --out`): [params] only, applied to s.
@@ -260,8 +272,8 @@ class Reader {
     }
     out.name = text(root_, "", "name", base.empty() ? std::string("unnamed") : base);
     out.summary = text(root_, "", "summary", "");
-    s.features = name_list(root_, "features", kFeatureNames, 5, s.features);
-    s.log = name_list(root_, "log", kLogNames, 5, s.log);
+    s.features = name_list(root_, "features", kFeatureNames, static_cast<int>(std::size(kFeatureNames)), s.features);
+    s.log = name_list(root_, "log", kLogNames, static_cast<int>(std::size(kLogNames)), s.log);
     s.t_end_s = number(root_, "", "t_end_s", s.t_end_s);
     s.frame_s = number(root_, "", "frame_s", s.frame_s);
     const double sub = number(root_, "", "substeps", s.substeps);

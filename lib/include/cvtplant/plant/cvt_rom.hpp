@@ -17,6 +17,7 @@
 //   rom_units.hpp      internal units (fixed-point scaling and overflow)
 //   rom_constants.hpp  the set-up constants in the plant's type and units
 //   rom_formulas.hpp   the formulas several parts share, one function each
+//   rom_tension.hpp    the chain's tension state (feature tension)
 //   rom_outputs.hpp    what a frame reports
 //   rom_energy.hpp     stored energy, power terms and the ledger
 //   rom_watchdog.hpp   the faults and the per-state checks
@@ -36,6 +37,7 @@
 #include "cvtplant/plant/rom_layout.hpp"
 #include "cvtplant/plant/rom_outputs.hpp"
 #include "cvtplant/plant/rom_params.hpp"
+#include "cvtplant/plant/rom_tension.hpp"
 #include "cvtplant/plant/rom_units.hpp"
 #include "cvtplant/scalar/fixed_eigen.hpp"
 #include "cvtplant/scalar/scalar.hpp"
@@ -238,6 +240,54 @@ class CvtRom {
     }
   }
 
+  // The chain's tension state at x with the chain at v_c = r2 w2
+  // (docs/rom.md#tension): the strands' difference dT, the centrifugal
+  // tension, the driver wrap's mean tension as the clamping force or the
+  // sheave's stop sets it, the chain's axial force, the slack strand and the
+  // creep strain. One division; no transcendental function.
+  template <class S>
+  ChainTension<S> chain_tension(const Eigen::Matrix<S, kStates, 1>& x, const S& vc) const {
+    const S zero(T(0));
+    ChainTension<S> t;
+    const Strands<S> st = strands(x);
+    t.dT = st.s1 + st.s2;
+    t.T_c = centrifugal_tension(S(c_.ten_m), vc);  // kappa m' v_c^2
+    // On its stop (or fixed) the sheave leaves the wrap the tension the
+    // geometry gives it: T_stop = T_max + eta_s dT.
+    t.T_1 = S(c_.ten_Tmax) + S(c_.ten_eta_s) * t.dT;
+    S F1 = wrap_axial_force(S(c_.ten_cF), t.T_1, t.T_c);
+    t.on_stop = true;
+    if (!c_.ten_fixed) {
+      // A free sheave holds the wrap at its clamping force, as long as that
+      // does not close it past its stop: T_1 = min(T_clamp, T_stop).
+      const S Fc = clamp_force(x);
+      if (Fc < F1) {
+        F1 = Fc;
+        t.T_1 = clamped_wrap_tension(S(c_.ten_inv_cF), Fc, t.T_c);
+        t.on_stop = false;
+      }
+    }
+    t.lifted = !(F1 > zero);
+    t.F_ax = t.lifted ? zero : F1;
+    // The strands' mean is the wrap's less its excess eta_w dT; neither
+    // strand carries compression.
+    t.T_s = t.T_1 - S(c_.ten_k_ws) * t.dT;
+    const S floor = t.dT < zero ? -t.dT : zero;
+    t.floored = t.T_s < floor;
+    if (t.floored) t.T_s = floor;
+    t.inv_D = S(T(1)) / (S(c_.ten_kL) + in_tension_unit(t.T_s));
+    t.eps = in_tension_unit(t.dT) * t.inv_D;
+    t.creep = creep_speed(S(c_.ten_g), t.eps, vc);
+    return t;
+  }
+
+  // A tension in RomUnits::tension_N (docs/rom.md#tension; N but in fixed point).
+  template <class S>
+  S in_tension_unit(const S& v) const {
+    if constexpr (U::kScaled) return v * S(c_.ten_unit);
+    return v;
+  }
+
   // Load torque at the driven shaft (docs/rom.md#road-load).
   template <class S>
   S load_torque(const S& w2) const {
@@ -262,7 +312,8 @@ class CvtRom {
   // evaluated once per state and shared by the right-hand side, the Jacobian
   // and the power terms, since the exponentials and the atan are most of a
   // frame on a Cortex-M (docs/rom.md#cost).
-  struct Contact {
+  // With the tension feature it also carries the chain's tension state.
+  struct Contact : RomContactTension<T, L::kTension> {
     T r1e{};             // effective driver radius [m]
     T v_rel1{}, v_rel2{};  // slip speeds [m/s]
     FrictionEval<T> lump1{}, lump2{};
@@ -273,7 +324,12 @@ class CvtRom {
     c.r1e = driver_radius(x);
     const T v1 = c.r1e * x(L::kW1);
     const T vc = c_.r2 * x(L::kW2);
-    c.v_rel1 = slip_velocity<T>(vc, x(L::kV1), v1);
+    T vc1 = vc;  // the chain's speed at the entry lump: faster by the creep (docs/rom.md#tension)
+    if constexpr (L::kTension) {
+      c.tension = chain_tension(x, vc);
+      vc1 = vc + c.tension.creep;
+    }
+    c.v_rel1 = slip_velocity<T>(vc1, x(L::kV1), v1);
     c.v_rel2 = slip_velocity<T>(vc, x(L::kV2), v1);
     c.lump1 = friction_characteristic_and_slope(c_.friction, c.v_rel1);
     c.lump2 = friction_characteristic_and_slope(c_.friction, c.v_rel2);
@@ -288,13 +344,35 @@ class CvtRom {
       const S r1e = driver_radius(x);
       const S v1 = r1e * x(L::kW1);
       const S vc = S(c_.r2) * x(L::kW2);
-      derivative_given(x, r1e, friction_characteristic(c_.friction, slip_velocity<S>(vc, x(L::kV1), v1)),
-                       friction_characteristic(c_.friction, slip_velocity<S>(vc, x(L::kV2), v1)), dxdt);
+      if constexpr (L::kTension) {
+        // docs/rom.md#tension: the entry lump meets the chain at the tight
+        // strand's speed, and the lumps' normal load is the chain's axial force.
+        const ChainTension<S> t = chain_tension(x, vc);
+        derivative_given_tension(
+            x, r1e, friction_characteristic(c_.friction, slip_velocity<S>(vc + t.creep, x(L::kV1), v1)),
+            friction_characteristic(c_.friction, slip_velocity<S>(vc, x(L::kV2), v1)), t.F_ax, dxdt);
+      } else {
+        derivative_given(x, r1e, friction_characteristic(c_.friction, slip_velocity<S>(vc, x(L::kV1), v1)),
+                         friction_characteristic(c_.friction, slip_velocity<S>(vc, x(L::kV2), v1)), dxdt);
+      }
     }
   }
   // The same, with the friction already evaluated at x (c = contact(x)).
   void derivative(const State& x, const Contact& c, State& dxdt) const {
-    derivative_given(x, c.r1e, c.lump1.phi, c.lump2.phi, dxdt);
+    if constexpr (L::kTension) derivative_given_tension(x, c.r1e, c.lump1.phi, c.lump2.phi, c.tension.F_ax, dxdt);
+    else derivative_given(x, c.r1e, c.lump1.phi, c.lump2.phi, dxdt);
+  }
+
+  // The axial force on the lumps at x (c = contact(x)): the clamping force,
+  // or with the tension feature the chain's (docs/rom.md#tension).
+  T axial_force(const State& x, const Contact& c) const {
+    if constexpr (L::kTension) {
+      (void)x;
+      return c.tension.F_ax;
+    } else {
+      (void)c;
+      return clamp_force(x);
+    }
   }
 
   // Analytic Jacobian (docs/rom.md#jacobian). Held pulleys get zero rows AND
@@ -334,7 +412,7 @@ class CvtRom {
     J.setZero();
     const T w1 = x(L::kW1), w2 = x(L::kW2);
     const T r1e = c.r1e;
-    const T fax = clamp_force(x);
+    const T fax = axial_force(x, c);
     const T N1 = normal_force(fax, c_.load1), N2 = normal_force(fax, c_.load2);
     T s1 = c.lump1.slope, s2 = c.lump2.slope;
     if (w_slope_floor) {
@@ -374,7 +452,11 @@ class CvtRom {
     dF1[L::kV1] = g1;
     dF2[L::kV2] = g2;
     if constexpr (L::kAxial) {
-      if (x(L::kDelta) > T(0)) {
+      bool bolt = x(L::kDelta) > T(0);
+      // With tension the bolt force acts on the lumps only while it holds the
+      // sheave off its stop (docs/rom.md#tension).
+      if constexpr (L::kTension) bolt = bolt && !c.tension.on_stop;
+      if (bolt) {
         // dF_i/dF_ax = -phi(v_rel_i) / cos(beta_i)
         dF1[L::kDelta] = per_tau(-c.lump1.phi * c_.load1 * c_.K_ax);
         dF2[L::kDelta] = per_tau(-c.lump2.phi * c_.load2 * c_.K_ax);
@@ -388,6 +470,7 @@ class CvtRom {
       dF1[L::kPsi] = g1 * dv;
       dF2[L::kPsi] = g2 * dv;
     }
+    if constexpr (L::kTension) tension_partials(x, c, g1, dF1, dF2);
     if (!free1) dF1[L::kW1] = dF2[L::kW1] = T(0);
     if (!free2) dF1[L::kW2] = dF2[L::kW2] = T(0);
 
@@ -424,6 +507,61 @@ class CvtRom {
       J(L::kDeltaDot, L::kDeltaDot) = per_tau(-c_.cs * c_.inv_ms);
     }
     if constexpr (L::kPolygon) J(L::kPsi, L::kW1) = per_tau(T(1));
+  }
+
+  // docs/rom.md#tension-jacobian: the partials of F_1 through the entry
+  // lump's creep speed, and of both lumps' friction through the chain's axial
+  // force, added to dF_i (per time unit like g1 = dF_1/dv_rel,1). dT = F_s1 +
+  // F_s2 has the columns x_i (k1) and xd_i (c1), T_c = kappa m' (r2 w2)^2 the column
+  // w2, the clamping force the column delta (axial). The products are ordered
+  // so that no intermediate leaves q16.16 in the range of docs/rom.md#fixed-point.
+  void tension_partials(const State& x, const Contact& c, const T& g1, T (&dF1)[kStates],
+                        T (&dF2)[kStates]) const {
+    const ChainTension<T>& t = c.tension;
+    const T vc = c_.r2 * x(L::kW2);
+    const T dTc = c_.ten_two_m_r2 * vc;  // d T_c / d w2 = 2 kappa m' r2 v_c
+    // d T_s / d dT, d T_s / d w2 and d T_s / d F_clamp in the slack strand's regime.
+    T s_dT(0), s_w2(0), s_Fc(0);
+    if (t.floored) {
+      if (t.dT < T(0)) s_dT = T(-1);
+    } else if (t.on_stop) {
+      s_dT = c_.ten_eta_s - c_.ten_k_ws;
+    } else {
+      s_dT = -c_.ten_k_ws;
+      s_w2 = dTc;
+      s_Fc = c_.ten_inv_cF;
+    }
+    // creep = g eps v_c, eps = dT / (kL + T_s):
+    //   d creep = g v_c (d dT - eps d T_s) / (kL + T_s) + g eps r2 d w2.
+    const T gv = c_.ten_g * vc;
+    const T q = gv * (T(1) - t.eps * s_dT) * t.inv_D;
+    const T c_x = in_tension_unit(q * c_.k1), c_xd = in_tension_unit(q * c_.c1);
+    const T gve = gv * t.eps * t.inv_D;
+    const T c_w2 = c_.ten_g * t.eps * c_.r2 - in_tension_unit(gve * s_w2);
+    dF1[L::kX1] += g1 * c_x;
+    dF1[L::kX2] += g1 * c_x;
+    dF1[L::kV1] += g1 * c_xd;
+    dF1[L::kV2] += g1 * c_xd;
+    dF1[L::kW2] += g1 * c_w2;
+    if constexpr (L::kAxial) {
+      if (s_Fc != T(0) && x(L::kDelta) > T(0)) dF1[L::kDelta] -= g1 * in_tension_unit(gve * (s_Fc * c_.K_ax));
+    }
+    if (t.lifted || !t.on_stop) return;  // the clamped regime's F_ax is the bolt force (axial rows)
+    // On the stop F_ax = c_F (T_max + eta_s dT - T_c): dF_i/dF_ax = -phi_i load_i.
+    const T n1 = -c.lump1.phi * c_.load1, n2 = -c.lump2.phi * c_.load2;
+    const T f_x = c_.ten_cF_eta_s * c_.k1, f_xd = c_.ten_cF_eta_s * c_.c1, f_w2 = -c_.ten_cF * dTc;
+    const T n1x = per_tau(n1 * f_x), n2x = per_tau(n2 * f_x);
+    const T n1v = per_tau(n1 * f_xd), n2v = per_tau(n2 * f_xd);
+    dF1[L::kX1] += n1x;
+    dF1[L::kX2] += n1x;
+    dF1[L::kV1] += n1v;
+    dF1[L::kV2] += n1v;
+    dF1[L::kW2] += per_tau(n1 * f_w2);
+    dF2[L::kX1] += n2x;
+    dF2[L::kX2] += n2x;
+    dF2[L::kV1] += n2v;
+    dF2[L::kV2] += n2v;
+    dF2[L::kW2] += per_tau(n2 * f_w2);
   }
 
   // docs/rom.md#slope-floor for the W of the wedging plants: adds to J
@@ -489,6 +627,15 @@ class CvtRom {
     const S F1 = lump_friction(phi1, normal_force(fax, S(c_.load1)));
     const S F2 = lump_friction(phi2, normal_force(fax, S(c_.load2)));
     drive_train_rows(x, r1e, S(c_.r2), F1, F2, fax, dxdt);
+  }
+  // The same with the tension feature (docs/rom.md#tension): the lumps press
+  // with the chain's axial force fax_chain, the sheave feels its bolt force.
+  template <class S>
+  void derivative_given_tension(const Eigen::Matrix<S, kStates, 1>& x, const S& r1e, const S& phi1, const S& phi2,
+                                const S& fax_chain, Eigen::Matrix<S, kStates, 1>& dxdt) const {
+    const S F1 = lump_friction(phi1, normal_force(fax_chain, S(c_.load1)));
+    const S F2 = lump_friction(phi2, normal_force(fax_chain, S(c_.load2)));
+    drive_train_rows(x, r1e, S(c_.r2), F1, F2, clamp_force(x), dxdt);
   }
 
   // The rows every feature set shares: pulleys, lumps, axial, polygon phase,

@@ -12,12 +12,13 @@
 #include "cvtplant/plant/rom_formulas.hpp"
 #include "cvtplant/plant/rom_layout.hpp"
 #include "cvtplant/plant/rom_params.hpp"
+#include "cvtplant/plant/rom_tension.hpp"
 #include "cvtplant/plant/rom_units.hpp"
 
 namespace cvt {
 
 template <class T, std::uint32_t F>
-struct RomConstants {
+struct RomConstants : RomTensionConstants<T, RomLayout<F>::kTension> {
   using L = RomLayout<F>;
   using U = RomUnits<T>;
   using A = RomAcc<T>;
@@ -145,6 +146,27 @@ struct RomConstants {
       const double g = p.wrap_tension_share * seed::wrap_angle_driver_rad(p.r1_m, p.r2_m, p.center_distance_m);
       wrap_g = T(g);
       acc.wrap_g = A(g);
+    }
+    if constexpr (L::kTension) {
+      // docs/rom.md#tension: the driver wrap's axial force per N of wrap
+      // tension, theta1 / (2 tan beta0), at the set-up radii.
+      const double theta1 = seed::wrap_angle_driver_rad(p.r1_m, p.r2_m, p.center_distance_m);
+      const double cF = theta1 / (2.0 * dm::sin(p.beta0_rad) / dm::cos(p.beta0_rad));
+      const double m = p.centrifugal_gain * p.chain_mass_kg_m;
+      this->ten_m = T(m);
+      this->ten_two_m_r2 = T(2.0 * m * p.r2_m);
+      this->ten_cF = T(cF);
+      this->ten_inv_cF = T(1.0 / cF);
+      this->ten_Tmax = T(p.stop_tension_N);
+      this->ten_eta_s = T(p.stop_tension_share);
+      this->ten_cF_eta_s = T(cF * p.stop_tension_share);
+      this->ten_k_ws = T(p.wrap_excess_share + 0.5);
+      this->ten_kL = T(p.chain_stiffness_N / U::tension_N);
+      this->ten_unit = T(1.0 / U::tension_N);
+      this->ten_g = T(p.creep_gain);
+      this->ten_fixed = p.fixed_sheaves;
+      // Fixed point: m v_c^2 saturates above sqrt(Q max / m); the simulator faults there.
+      if constexpr (U::kScaled) this->ten_w2_max = m > 0.0 ? T(dm::sqrt(T::max().to_double() / m) / p.r2_m) : T::max();
     }
     // Accounting copies (docs/rom.md#energy-balance).
     acc.J1 = A(p.J1_kgm2);

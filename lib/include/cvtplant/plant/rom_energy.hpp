@@ -165,7 +165,7 @@ inline RomPower<RomAcc<typename Plant::Scalar>> rom_power(const Plant& plant, co
   using T = typename Plant::Scalar;
   using L = typename Plant::Layout;
   const auto& c = plant.constants();
-  const T fax = plant.clamp_force(xs);
+  const T fax = plant.axial_force(xs, contact);
   const T F1 = lump_friction(contact.lump1.phi, normal_force(fax, c.load1));
   const T F2 = lump_friction(contact.lump2.phi, normal_force(fax, c.load2));
   const T tau_in = c.hold1 ? friction_torque(contact.r1e, F1, F2) : plant.inputs.tau_in_Nm;
@@ -176,7 +176,15 @@ inline RomPower<RomAcc<typename Plant::Scalar>> rom_power(const Plant& plant, co
   } else {
     tau_load = plant.load_torque(xs(L::kW2));
   }
-  return rom_power_given(plant, xs, tau_in, tau_load, F1, F2, contact.v_rel1, contact.v_rel2);
+  if constexpr (L::kTension) {
+    RomPower<RomAcc<T>> pw = rom_power_given(plant, xs, tau_in, tau_load, F1, F2, contact.v_rel1, contact.v_rel2);
+    // docs/rom.md#tension-energy: the creep loss F_1 g eps v_c, the power the
+    // driver puts into chain that runs faster than the lumps' frame.
+    pw.friction_loss_W += rom_to_acc(F1) * rom_to_acc(contact.tension.creep);
+    return pw;
+  } else {
+    return rom_power_given(plant, xs, tau_in, tau_load, F1, F2, contact.v_rel1, contact.v_rel2);
+  }
 }
 
 // The power terms at xs with the plant's current inputs [W].

@@ -20,7 +20,12 @@ struct RomOutputs {
   T friction1_N{}, friction2_N{};            // tangential friction on the lumps
   T radial_friction1_N{}, radial_friction2_N{};  // along the flank, radial direction (wedging; seed Eq. 7 F_r)
   T v_rel1_m_s{}, v_rel2_m_s{};
+  // The chain's tension state (feature tension, docs/rom.md#tension; else 0).
+  T tension_tight_N{}, tension_slack_N{};  // T_t, T_s
+  T centrifugal_tension_N{};               // m' v_c^2
+  T creep_strain{};                        // dT / (kL + T_s)
   bool stick1 = false, stick2 = false;
+  bool sheave_on_stop = false;             // tension: the driver sheave on its stop (or fixed), T_1 = T_stop
 };
 
 // The outputs of `plant` (a CvtRom) at state x with its current inputs.
@@ -36,7 +41,21 @@ inline RomOutputs<typename Plant::Scalar> rom_outputs(const Plant& plant,
   const T r2 = plant.pitch_radius2(x);
   const T v1 = r1e * w1;
   const T vc = r2 * w2;
-  const T fax = plant.clamp_force(x);
+  T fax, vc1 = vc;
+  if constexpr (L::kTension) {
+    // docs/rom.md#tension: the chain's axial force, and the entry lump meets
+    // the chain at the tight strand's speed.
+    const auto t = plant.chain_tension(x, vc);
+    fax = t.F_ax;
+    vc1 = vc + t.creep;
+    o.tension_slack_N = t.T_s;
+    o.tension_tight_N = t.T_s + t.dT;
+    o.centrifugal_tension_N = t.T_c;
+    o.creep_strain = t.eps;
+    o.sheave_on_stop = t.on_stop;
+  } else {
+    fax = plant.clamp_force(x);
+  }
   o.omega1_rad_s = w1;
   o.omega2_rad_s = w2;
   o.radius1_m = plant.pitch_radius1(x);
@@ -46,7 +65,7 @@ inline RomOutputs<typename Plant::Scalar> rom_outputs(const Plant& plant,
   o.speed_ratio = abs(w2) < w_tiny ? T(0) : w1 / w2;
   o.slip = abs(v1) < w_tiny ? T(0) : (v1 - vc) / v1;
   o.clamp_force_N = fax;
-  o.v_rel1_m_s = slip_velocity<T>(vc, x(L::kV1), v1);
+  o.v_rel1_m_s = slip_velocity<T>(vc1, x(L::kV1), v1);
   o.v_rel2_m_s = slip_velocity<T>(vc, x(L::kV2), v1);
   if constexpr (L::kWedge) {
     const auto w = plant.wedge_contact(o.v_rel1_m_s, o.v_rel2_m_s, x(L::kRhoDot), fax);

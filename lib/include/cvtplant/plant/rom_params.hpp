@@ -18,9 +18,14 @@ inline constexpr std::uint32_t road_load = 1u << 1;    // tau_load += T0 tanh(w2
 inline constexpr std::uint32_t deformation = 1u << 2;  // seed Eq. 3-4 flank angle per lump
 inline constexpr std::uint32_t polygon = 1u << 3;      // chordal action of the driver wrap (needs phi1 phase)
 inline constexpr std::uint32_t wedging = 1u << 4;      // radial chain DOF, seed Eq. 7, variable ratio (needs axial)
-// Every feature the fixed-point plant supports (wedging is floating point only).
+inline constexpr std::uint32_t tension = 1u << 5;      // chain tension: creep, centrifugal unloading, sheave stops (not with wedging)
+// The first four features, each of which every scalar type supports.
 inline constexpr std::uint32_t basic = axial | road_load | deformation | polygon;
+// The widest plant: every feature but tension (wedging is floating point only).
 inline constexpr std::uint32_t all = basic | wedging;
+// Every defined bit. Tension combines with every feature but wedging
+// (docs/rom.md#tension), in every scalar type.
+inline constexpr std::uint32_t known = all | tension;
 }  // namespace rom_feature
 
 struct RomParams {
@@ -86,6 +91,21 @@ struct RomParams {
   // driven wrap's by eta times the strands' tension difference; 0 is the
   // no-load thrust ratio (the ratio holds under torque).
   double wrap_tension_share = 0.0;             // eta in [0, 1)
+
+  // feature: tension (docs/rom.md#tension). The chain's tension state: creep
+  // of the soft chain under load (the driver's surface runs at the tight
+  // strand's speed), its centrifugal tension m' v_c^2, and the driver sheave
+  // held by its clamping force or closed on its stop (or fixed).
+  double chain_mass_kg_m = 3.0910877470796927;  // m': 44 links of 0.1125 kg on the 1.6014 m pitch line; 0: no centrifugal tension
+  double centrifugal_gain = 1.7862;             // kappa: T_c = kappa m' v_c^2 on the driver wrap, v_c the slack strand's speed
+  double chain_stiffness_N = 2700.0;            // k L: a link's pitch is L (1 + T / (k L))
+  double creep_gain = 1.0;                      // g: 1 = belt-creep theory; 0: no creep
+  // docs/rom.md#tension-parameters: measured on the multibody reference,
+  // fixed sheaves, seed case 1 (at rest, and over 0.5-1 s).
+  double stop_tension_N = 536.86268306837;      // T_max: the driver wrap's mean tension at rest with the sheaves on their stops
+  double stop_tension_share = 0.1671;           // eta_s: its rise per N of the strands' difference dT on the stops
+  double wrap_excess_share = 0.1343;            // eta_w: the driver wrap's mean over the strands' mean, per N of dT
+  bool fixed_sheaves = false;                   // the driver sheave never leaves its stop: the clamp input is unused
 };
 
 // The fastest driver whose link passing an integrator step of `step_s`

@@ -154,6 +154,12 @@ class RomSimulator {
     if constexpr (Plant::Layout::kPolygon) {
       if (abs_of(x_(Plant::Layout::kW1)) > resolved_speed_) return roll_back(RomFault::step_unresolved);
     }
+    // docs/rom.md#tension: in fixed point kappa m' v_c^2 saturates beyond the Q
+    // range, and what the tension law makes of it means nothing.
+    if constexpr (Plant::Layout::kTension && Plant::U::kScaled) {
+      if (abs_of(x_(Plant::Layout::kW2)) > plant_.constants().ten_w2_max)
+        return roll_back(RomFault::tension_out_of_range);
+    }
     if (cfg_.energy_ledger && cfg_.watchdog_energy) {
       const Acc r = ledger_.residual_J();
       if (!(r == r) || r > rel_tol_ * ledger_.scale_J() + abs_tol_) roll_back(RomFault::energy_growth);

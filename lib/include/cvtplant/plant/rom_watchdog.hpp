@@ -20,6 +20,7 @@ enum class RomFault : std::uint8_t {
   speed_out_of_range,  // a pulley beyond RomParams::speed_limit_rad_s
   step_unresolved,    // polygon: links pass the driver faster than the step resolves (docs/rom.md#polygon)
   scene_features,     // run_frames: the simulator's features are not the scene's
+  tension_out_of_range,  // tension: m' v_c^2 beyond the fixed-point range (docs/rom.md#tension)
 };
 
 inline constexpr const char* rom_fault_name(RomFault f) {
@@ -34,6 +35,7 @@ inline constexpr const char* rom_fault_name(RomFault f) {
     case RomFault::speed_out_of_range: return "speed-out-of-range";
     case RomFault::step_unresolved: return "step-unresolved";
     case RomFault::scene_features: return "scene-features";
+    case RomFault::tension_out_of_range: return "tension-out-of-range";
   }
   return "?";
 }

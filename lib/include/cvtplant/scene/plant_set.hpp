@@ -36,7 +36,9 @@ constexpr std::size_t max_of(std::size_t a, std::size_t b, R... rest) {
 template <class T>
 constexpr const char* missing_plant_reason(std::uint32_t features, bool found) {
   if (found) return nullptr;
-  if ((features & ~rom_feature::all) != 0u) return "unknown feature bit";
+  if ((features & ~rom_feature::known) != 0u) return "unknown feature bit";
+  if ((features & rom_feature::tension) != 0u && (features & rom_feature::wedging) != 0u)
+    return "tension does not combine with wedging";
   if ((features & rom_feature::wedging) != 0u && (features & rom_feature::axial) == 0u)
     return "wedging needs the axial feature";
   if ((features & rom_feature::wedging) != 0u && !std::is_floating_point<T>::value)
@@ -88,6 +90,12 @@ SceneIssue check_scalar_range(const Scene& s) {
       return SceneIssue{false, "initial",
                         "beyond the fixed-point range (speeds |v| < 32768, displacements |x| < 32 m): it would be "
                         "clipped"};
+    if ((s.features & rom_feature::tension) != 0u) {
+      // docs/rom.md#tension: T_max in N, kL in RomUnits::tension_N.
+      const char* tw = "beyond the fixed-point range: it would be clipped; run it in double or float";
+      if (!fits(s.params.stop_tension_N)) return SceneIssue{false, "stop_tension_N", tw};
+      if (!fits(s.params.chain_stiffness_N / U::tension_N)) return SceneIssue{false, "chain_stiffness_N", tw};
+    }
   } else {
     (void)s;
   }

@@ -116,7 +116,8 @@ inline constexpr std::uint32_t friction = 1u << 1;  // F1, F2, v_rel1, v_rel2, s
 inline constexpr std::uint32_t ratios = 1u << 2;    // speed_ratio, geometric_ratio
 inline constexpr std::uint32_t energy = 1u << 3;    // ledger and residual
 inline constexpr std::uint32_t states = 1u << 4;    // raw state vector
-inline constexpr std::uint32_t all = torques | friction | ratios | energy | states;
+inline constexpr std::uint32_t tension = 1u << 5;   // T_t, T_s, T_c, creep strain, sheave on its stop (feature tension)
+inline constexpr std::uint32_t all = torques | friction | ratios | energy | states | tension;
 }  // namespace rom_log
 
 struct Scene {
@@ -198,7 +199,7 @@ inline SceneIssue validate_scene(const Scene& s) {
   using scene_detail::bad;
   using scene_detail::fin;
   const RomParams& p = s.params;
-  if ((s.features & ~rom_feature::all) != 0u) return bad("features", "unknown feature bit");
+  if ((s.features & ~rom_feature::known) != 0u) return bad("features", "unknown feature bit");
   if (!(fin(p.r1_m) && p.r1_m > 0 && p.r1_m <= 2)) return bad("r1_m", "must be in (0, 2] m");
   if (!(fin(p.r2_m) && p.r2_m > 0 && p.r2_m <= 2)) return bad("r2_m", "must be in (0, 2] m");
   if (!(fin(p.beta0_rad) && p.beta0_rad >= 0 && p.beta0_rad < 1.4)) return bad("beta0_deg", "must be in [0, 80) deg");
@@ -266,6 +267,29 @@ inline SceneIssue validate_scene(const Scene& s) {
           s.initial.radius_offset_m < p.radial_travel_m))
       return bad("initial", "radius_offset_m must be within the radial travel");
   }
+  if (s.features & rom_feature::tension) {
+    // docs/rom.md#tension
+    if (s.features & rom_feature::wedging)
+      return bad("features", "tension does not combine with wedging (the chain's radial position would set the wrap "
+                             "tension; not modelled)");
+    if (!(p.beta0_rad >= 0.01))
+      return bad("beta0_deg", "tension needs beta0 >= 0.573 deg: a wrap's axial force is theta1 (T - T_c) / (2 tan beta0)");
+    if (!(fin(p.chain_mass_kg_m) && p.chain_mass_kg_m >= 0 && p.chain_mass_kg_m <= 100))
+      return bad("chain_mass_kg_m", "must be in [0, 100] kg/m");
+    if (!(fin(p.chain_stiffness_N) && p.chain_stiffness_N > 0 && p.chain_stiffness_N <= 1e9))
+      return bad("chain_stiffness_N", "must be in (0, 1e9] N");
+    if (!(fin(p.creep_gain) && p.creep_gain >= 0 && p.creep_gain <= 10)) return bad("creep_gain", "must be in [0, 10]");
+    if (!(fin(p.stop_tension_N) && p.stop_tension_N >= 0 && p.stop_tension_N <= 1e6))
+      return bad("stop_tension_N", "must be in [0, 1e6] N");
+    if (!(fin(p.stop_tension_share) && p.stop_tension_share >= 0 && p.stop_tension_share <= 1))
+      return bad("stop_tension_share", "must be in [0, 1]");
+    if (!(fin(p.centrifugal_gain) && p.centrifugal_gain >= 0 && p.centrifugal_gain <= 10))
+      return bad("centrifugal_gain", "must be in [0, 10]");
+    if (!(fin(p.wrap_excess_share) && p.wrap_excess_share >= -0.5 && p.wrap_excess_share <= 0.5))
+      return bad("wrap_excess_share", "must be in [-0.5, 0.5] (the driver wrap's mean between the strands)");
+    if (p.fixed_sheaves && (s.features & rom_feature::axial))
+      return bad("fixed_sheaves", "fixed sheaves have no clamping actuator: drop the axial feature");
+  }
   if (s.features & rom_feature::polygon) {
     if (!(fin(p.pitch_m) && p.pitch_m > 0 && p.pitch_m < 1.5 * p.r1_m)) return bad("pitch_m", "must be in (0, 1.5 r1)");
   }
@@ -288,6 +312,8 @@ inline SceneIssue validate_scene(const Scene& s) {
     return bad("substeps", "polygon: the step does not resolve the link passing at the starting driver speed "
                            "(8 steps per link needed): raise substeps");
   if ((s.log & ~rom_log::all) != 0u) return bad("log", "unknown log group");
+  if ((s.log & rom_log::tension) != 0u && (s.features & rom_feature::tension) == 0u)
+    return bad("log", "the tension group needs the tension feature");
   if (!s.energy_ledger && (s.log & rom_log::energy) != 0u)
     return bad("log", "the energy group needs energy_ledger = true");
   return SceneIssue{};

@@ -1,0 +1,6 @@
+// AllRomPlants<float>, part tension (all_plants_parts.hpp).
+#include "all_plants_parts.hpp"
+
+namespace cvt::all_plants_detail {
+template IRomSimulator<float>* build_tension<float>(std::uint32_t, const RomParams&, const RomSimConfig&, void*);
+}  // namespace cvt::all_plants_detail
