@@ -201,7 +201,7 @@ class CvtRom {
   template <class S>
   S ripple_cos(const Eigen::Matrix<S, kStates, 1>& x) const {
     if constexpr (L::kPolygon) {
-      if (c_.rip_A != T(0)) return cos(ripple_angle(x(L::kPsi)));
+      if (rippled()) return cos(ripple_angle(x(L::kPsi)));
     }
     (void)x;
     return S(T(0));
@@ -213,12 +213,21 @@ class CvtRom {
 
   // The axial force that loads the lumps (docs/rom.md#link-ripple): the
   // sheave's or the chain's F_ax, with chordal action F_ax (1 + A cos theta).
-  // The sheave's own balance keeps F_ax (docs/rom.md#axial).
+  // The sheave's own balance keeps F_ax (docs/rom.md#axial). With the
+  // ripple off (A = 0) F_ax itself, at no cost.
   template <class S>
   S lumps_axial_force(const S& fax, const S& cos_theta) const {
-    if constexpr (L::kPolygon) return rippled_axial_force(fax, S(c_.rip_A), cos_theta);
+    if constexpr (L::kPolygon) {
+      if (rippled()) return rippled_axial_force(fax, S(c_.rip_A), cos_theta);
+    }
     (void)cos_theta;
     return fax;
+  }
+  // True when the plant carries the link-passing ripple (chordal action and
+  // A != 0, docs/rom.md#link-ripple); the ripple's terms are skipped otherwise.
+  bool rippled() const {
+    if constexpr (L::kPolygon) return c_.rip_A != T(0);
+    return false;
   }
 
   // False once the chain is through an end stop by another full travel: the
@@ -373,7 +382,7 @@ class CvtRom {
     c.lump2 = friction_characteristic_and_slope(c_.friction, c.v_rel2);
     if constexpr (L::kPolygon) {
       // With the ripple off (A = 0) both stay 0: no term reads them then.
-      if (c_.rip_A != T(0)) {
+      if (rippled()) {
         const T theta = ripple_angle(x(L::kPsi));
         c.ripple_cos = cos(theta);
         c.ripple_sin = sin(theta);
@@ -486,7 +495,9 @@ class CvtRom {
     const T N1 = normal_force(fax, c_.load1), N2 = normal_force(fax, c_.load2);
     // docs/rom.md#link-ripple: d(lumps' F_ax)/d F_ax = 1 + A cos(theta).
     T rip(1);
-    if constexpr (L::kPolygon) rip = T(1) + c_.rip_A * c.ripple_cos;
+    if constexpr (L::kPolygon) {
+      if (rippled()) rip = T(1) + c_.rip_A * c.ripple_cos;
+    }
     T s1 = c.lump1.slope, s2 = c.lump2.slope;
     if (w_slope_floor) {
       if (abs(c.v_rel1) < c_.floor_speed && s1 < c_.slope_floor) s1 = c_.slope_floor;
@@ -532,7 +543,9 @@ class CvtRom {
       if (bolt) {
         // dF_i/dF_ax = -phi(v_rel_i) / cos(beta_i), times the ripple's factor.
         T kb = c_.K_ax;
-        if constexpr (L::kPolygon) kb = kb * rip;
+        if constexpr (L::kPolygon) {
+          if (rippled()) kb = kb * rip;
+        }
         dF1[L::kDelta] = per_tau(-c.lump1.phi * c_.load1 * kb);
         dF2[L::kDelta] = per_tau(-c.lump2.phi * c_.load2 * kb);
       }
@@ -545,9 +558,11 @@ class CvtRom {
       dF1[L::kPsi] = g1 * dv;
       dF2[L::kPsi] = g2 * dv;
       // docs/rom.md#link-ripple: d(lumps' F_ax)/dpsi = -F_ax A (pi/alpha) sin(theta).
-      const T dfl = -(unrippled_axial_force(x, c) * (c_.rip_A * c_.rip_k)) * c.ripple_sin;
-      dF1[L::kPsi] += per_tau(-c.lump1.phi * c_.load1 * dfl);
-      dF2[L::kPsi] += per_tau(-c.lump2.phi * c_.load2 * dfl);
+      if (rippled()) {
+        const T dfl = -(unrippled_axial_force(x, c) * (c_.rip_A * c_.rip_k)) * c.ripple_sin;
+        dF1[L::kPsi] += per_tau(-c.lump1.phi * c_.load1 * dfl);
+        dF2[L::kPsi] += per_tau(-c.lump2.phi * c_.load2 * dfl);
+      }
     }
     if constexpr (L::kTension) tension_partials(x, c, g1, rip, dF1, dF2);
     if (!free1) dF1[L::kW1] = dF2[L::kW1] = T(0);
@@ -667,7 +682,7 @@ class CvtRom {
     if (t.lifted || !t.on_stop) return;  // the clamped regime's F_ax is the bolt force (axial rows)
     // On the stop F_ax = c_F (T_max + eta_s dT - T_c): dF_i/dF_ax = -phi_i load_i.
     T n1 = -c.lump1.phi * c_.load1, n2 = -c.lump2.phi * c_.load2;
-    if constexpr (L::kPolygon) {
+    if (rippled()) {
       n1 = n1 * rip;
       n2 = n2 * rip;
     } else {
@@ -893,7 +908,7 @@ class CvtRom {
     // 1 + A cos(theta) (docs/rom.md#link-ripple).
     T fl = fax, rip(1), dfl_psi(0);
     if constexpr (L::kPolygon) {
-      if (c_.rip_A != T(0)) {
+      if (rippled()) {
         const T theta = ripple_angle(x(L::kPsi));
         const T ct = cos(theta);
         fl = lumps_axial_force(fax, ct);
@@ -939,7 +954,9 @@ class CvtRom {
       #pragma GCC unroll 16
       for (int j = 0; j < N; ++j) {
         T dn = load[i] * dfax[j];
-        if constexpr (L::kPolygon) dn = load[i] * (rip * dfax[j] + (j == L::kPsi ? dfl_psi : T(0)));
+        if constexpr (L::kPolygon) {
+          if (rippled()) dn = load[i] * (rip * dfax[j] + (j == L::kPsi ? dfl_psi : T(0)));
+        }
         dF[i][j] = P.dF[0] * dvt[j] + P.dF[2] * dn;
         dR[i][j] = P.dFr[0] * dvt[j] + P.dFr[2] * dn;
       }
