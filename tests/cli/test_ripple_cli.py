@@ -101,6 +101,20 @@ class Ripple(unittest.TestCase):
             with self.subTest(window=p["t_begin_s"]):
                 self.assertLess(o["line_amplitude"], 0.1 * p["line_amplitude"], (p, o))
 
+    def test_bad_ripple_gain_in_a_scene_file(self):
+        with open(SCENE) as f:
+            text = f.read()
+        for gain, why in (("-0.5", "must be in [0, 10]"), ("nan", "must be finite"),
+                          ("12.5", "must be in [0, 10]"), ('"big"', "")):
+            bad = os.path.join(self.tmp.name, "bad.toml")
+            with open(bad, "w") as f:
+                f.write(re.sub(r"ripple_gain = [0-9.]+", "ripple_gain = " + gain, text))
+            with self.subTest(gain=gain):
+                r = run("run", "--scene", bad, "--t-end", "0.01")
+                self.assertEqual(r.returncode, 2, r.stderr)
+                self.assertIn("ripple_gain", r.stderr)
+                self.assertIn(why, r.stderr)
+
     def test_help(self):
         r = run("analyze", "ripple", "--help")
         self.assertEqual(r.returncode, 0)
