@@ -104,6 +104,7 @@ TEST_CASE("the shared friction evaluation does not change the trajectory") {
   check_cache_is_transparent<double, f::axial>("seed-case2");
   check_cache_is_transparent<float, f::axial | f::road_load>("tip-in");
   check_cache_is_transparent<cvt::q16_16, f::axial>("seed-case1");
+  check_cache_is_transparent<cvt::q16_16, f::tension>("seed-case1");
   check_cache_is_transparent<double, 0>("gross-slip");
 }
 
@@ -237,5 +238,7 @@ TEST_CASE("energy ledger off: same trajectory, no booking, essential checks kept
   check_ledger_off<double, f::axial>("seed-case1");
   check_ledger_off<float, f::axial>("seed-case1");
   check_ledger_off<cvt::q16_16, f::axial>("seed-case1");
+  check_ledger_off<double, f::tension>("seed-case1");
+  check_ledger_off<cvt::q16_16, f::tension>("seed-case1");
   check_ledger_off<double, f::axial | f::road_load | f::wedging>("ratio-control");
 }
