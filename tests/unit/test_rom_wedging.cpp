@@ -438,8 +438,9 @@ TEST_CASE("wedging: scene validation") {
   CHECK(field(t) == "radial_mass_kg");
 }
 
-TEST_CASE_TEMPLATE("wedging: the right-hand side from the Jacobian's contact is derivative() bit for bit", T, double,
-                   float) {
+TEST_CASE_TEMPLATE("wedging: the right-hand side and the power terms from the shared contact are derivative() and "
+                   "the outputs' terms bit for bit",
+                   T, double, float) {
   using R = cvt::CvtRom<T, kWedgeRoad>;
   using LL = cvt::RomLayout<kWedgeRoad>;
   for (const auto& fr : {cvt::friction_presets::table2_case1<double>(), cvt::friction_presets::table2_case2<double>()}) {
@@ -458,15 +459,35 @@ TEST_CASE_TEMPLATE("wedging: the right-hand side from the Jacobian's contact is 
       typename R::State x = rom.initial_state(x0);
       x(LL::kRhoDot) = T(rhod);
       typename R::State f1, f2;
-      typename R::Jacobian J2;
+      // The contact the simulator evaluates once per state (docs/rom.md#cost)
+      // and shares between the Jacobian (compared with the dual-number
+      // Jacobian above), the right-hand side and the ledger's power terms.
+      const typename R::Contact c = rom.contact(x);
       rom.derivative(x, f1);
-      rom.jacobian_and_derivative(x, J2, f2);
-      // The right-hand side only: both Jacobians come from jacobian_wedge
-      // (compared with the dual-number Jacobian above).
+      rom.derivative(x, c, f2);
       bool same = true;
       for (int i = 0; i < R::kStates; ++i) same = same && std::memcmp(&f1(i), &f2(i), sizeof(T)) == 0;
       CAPTURE(rhod);
       CHECK(same);
+      // The power terms of docs/rom.md#energy-balance from the outputs'
+      // forces, torques and slip speeds (rom_outputs evaluates the friction
+      // separately): the ledger books the same power as before the sharing.
+      const cvt::RomOutputs<T> o = rom.outputs(x);
+      using A = cvt::RomAcc<T>;
+      const cvt::RomPower<A> pc = rom.power(x, c);
+      const A rd = A(x(LL::kRhoDot));
+      const A w1 = A(x(LL::kW1)), w2 = A(x(LL::kW2)), v1 = A(x(LL::kV1)), v2 = A(x(LL::kV2));
+      const auto& k = rom.constants();
+      const A sv1 = v1 + A(k.acc.wrap_g) * rd, sv2 = v2 + A(k.acc.wrap_g) * rd;
+      const A friction_W = -(A(o.friction1_N) * A(o.v_rel1_m_s) + A(o.friction2_N) * A(o.v_rel2_m_s)) -
+                           (A(o.radial_friction1_N) * rd * A(k.inv_cos1) + A(o.radial_friction2_N) * rd * A(k.inv_cos2));
+      const A damping_W = k.acc.c1 * (sv1 * sv1 + sv2 * sv2) + k.acc.c2 * (v1 - v2) * (v1 - v2) +
+                          k.acc.cs * A(x(LL::kDeltaDot)) * A(x(LL::kDeltaDot)) + k.acc.cr * rd * rd;
+      CHECK(pc.input_W == A(o.tau_in_Nm) * w1);
+      CHECK(pc.load_W == A(o.tau_load_Nm) * w2);
+      CHECK(pc.actuator_W == A(x(LL::kFh)) * A(x(LL::kDeltaDot)));
+      CHECK(pc.friction_loss_W == friction_W);
+      CHECK(pc.damping_loss_W == damping_W);
     }
   }
 }

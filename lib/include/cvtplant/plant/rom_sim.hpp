@@ -5,7 +5,6 @@
 // Heap-free; the cost per frame does not depend on the state.
 #include <cstdint>
 #include <limits>
-#include <type_traits>
 
 #include "cvtplant/integrate/method.hpp"
 #include "cvtplant/plant/cvt_rom.hpp"
@@ -190,29 +189,21 @@ class RomSimulator {
   T substep() const { return h_; }
 
  private:
-  static constexpr bool kContact = !Plant::Layout::kWedge;
-  // Friction of the current state (docs/rom.md#cost); empty with wedging.
-  struct NoContact {};
-  using Contact = std::conditional_t<kContact, typename Plant::Contact, NoContact>;
+  // Friction of the current state (docs/rom.md#cost).
+  using Contact = typename Plant::Contact;
   // Rounding remainders of the fixed-point increments (integrate/increment.hpp).
   using Carry = IncrementCarry<T, Plant::kStates>;
 
   void refresh_contact() {
-    if constexpr (kContact) contact_ = plant_.contact(x_);
+    contact_ = plant_.contact(x_);
     contact_stale_ = false;
   }
-  RomPower<Acc> power_now() const {
-    if constexpr (kContact) return plant_.power(x_, contact_);
-    else return plant_.power(x_);
-  }
+  RomPower<Acc> power_now() const { return plant_.power(x_, contact_); }
   void advance_substep(const T& h) {
-    if constexpr (kContact) {
-      if (cfg_.method == Method::ros2 || cfg_.method == Method::linear_implicit_euler) {
-        rom_step_implicit(cfg_.method, plant_, x_, h, contact_, cfg_.w_slope_floor, &carry_);
-        return;
-      }
-    }
-    rom_step(cfg_.method, plant_, x_, h, cfg_.w_slope_floor, &carry_);
+    if (cfg_.method == Method::ros2 || cfg_.method == Method::linear_implicit_euler)
+      rom_step_implicit(cfg_.method, plant_, x_, h, contact_, cfg_.w_slope_floor, &carry_);
+    else
+      rom_step(cfg_.method, plant_, x_, h, cfg_.w_slope_floor, &carry_);
   }
 
   // One substep of h, checked (non-finite or saturated state, radial travel).

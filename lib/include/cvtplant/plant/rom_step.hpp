@@ -44,8 +44,12 @@ class RomWSolver {
   static constexpr int kKinCore[5] = {2, 3, kWedge ? 4 : 0, 5, 0};
 
  public:
-  // W = I - a J for the Jacobian J at the step's start.
-  void factor(const typename Plant::Jacobian& J, const T& a) {
+  // W = I - a J for the Jacobian J at the step's start. Reads only the
+  // entries the structure above names: the core rows, the kinematic rows'
+  // entries and the axial block (CvtRom::jacobian_entries writes those).
+  void factor(const typename Plant::Jacobian& J, const T& a_ref) {
+    // By value: a reference could alias the stores below, and be read again after each.
+    const T a = a_ref;
     #pragma GCC unroll 8
     for (int p = 0; p < kNumKin; ++p) kin_[p] = a * J(kKin[p], kCore[kKinCore[p]]);
     #pragma GCC unroll 8
@@ -117,10 +121,10 @@ class RomWSolver {
     #pragma GCC unroll 8
     for (int k = 0; k < kM; ++k) {
       int piv = k;
-      T big = abs_of(lu_[k][k]);
+      T big = abs(lu_[k][k]);
       #pragma GCC unroll 8
       for (int i = k + 1; i < kM; ++i) {
-        const T v = abs_of(lu_[i][k]);
+        const T v = abs(lu_[i][k]);
         if (v > big) {
           big = v;
           piv = i;
@@ -167,8 +171,6 @@ class RomWSolver {
     }
   }
 
-  static T abs_of(const T& v) { return v < T(0) ? -v : v; }
-
   // Written by factor() before solve() reads them; not initialised, since a
   // solver is made for every step and zeroing it cost 60 instructions there.
   T kin_[5];
@@ -179,11 +181,11 @@ class RomWSolver {
   int perm_[kM];
 };
 
-// One ROS2 or linearly implicit Euler step of a plant without wedging, from
-// a state whose friction is already evaluated (c = sys.contact(x)): the
-// simulator evaluates it once per state and shares it with the energy ledger
-// (docs/rom.md#cost). `w_slope_floor` builds W with the friction slope floor
-// of docs/rom.md#slope-floor; without it W = I - gamma h J exactly.
+// One ROS2 or linearly implicit Euler step from a state whose contact is
+// already evaluated (c = sys.contact(x)): the simulator evaluates it once per
+// state and shares it with the energy ledger (docs/rom.md#cost).
+// `w_slope_floor` builds W with the friction slope floor of
+// docs/rom.md#slope-floor; without it W = I - gamma h J exactly.
 // `carry` keeps the fixed-point rounding remainders from step to step
 // (integrate/increment.hpp); floating point ignores it.
 template <class T, std::uint32_t F>
@@ -191,8 +193,8 @@ void rom_step_implicit(Method m, const CvtRom<T, F>& sys, typename CvtRom<T, F>:
                        const typename CvtRom<T, F>::Contact& c, bool w_slope_floor,
                        CarryOf<CvtRom<T, F>>* carry = nullptr) {
   using Plant = CvtRom<T, F>;
-  typename Plant::Jacobian J;
-  sys.jacobian(x, c, J, w_slope_floor);
+  typename Plant::Jacobian J;  // only the entries the W solver reads are written
+  sys.jacobian_entries(x, c, J, w_slope_floor);
   RomWSolver<T, F> w;
   typename Plant::State f;
   sys.derivative(x, c, f);
@@ -216,19 +218,7 @@ void rom_step(Method m, const CvtRom<T, F>& sys, typename CvtRom<T, F>::State& x
     case Method::linear_implicit_euler:
     case Method::ros2: break;
   }
-  if constexpr (RomLayout<F>::kWedge) {
-    // Wedging evaluates its contact inside derivative() and jacobian();
-    // the solve is the same block elimination (docs/rom.md#wedging).
-    typename CvtRom<T, F>::Jacobian J;
-    typename CvtRom<T, F>::State f;
-    sys.jacobian_and_derivative(x, J, f);
-    if (w_slope_floor) sys.add_w_slope_floor(x, J);
-    RomWSolver<T, F> w;
-    if (m == Method::linear_implicit_euler) step_linear_implicit_euler_with(sys, x, h, J, w, f, carry);
-    else step_ros2_with(sys, x, h, J, w, f, carry);
-  } else {
-    rom_step_implicit(m, sys, x, h, sys.contact(x), w_slope_floor, carry);
-  }
+  rom_step_implicit(m, sys, x, h, sys.contact(x), w_slope_floor, carry);
 }
 
 }  // namespace cvt
