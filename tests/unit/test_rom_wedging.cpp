@@ -330,14 +330,21 @@ TEST_CASE("wedging: the end stop is resolved by finer steps only while the chain
   // Unresolved: the ledger closes only to about 1e-3 of the flows.
   CHECK(one.residual_rel > 1e-4);
   CHECK(one.residual_rel < 5e-3);
-  // The default takes the frames near the stop in 2 substeps: the ledger
-  // closes as with 2 substeps everywhere, at one step per frame off it
-  // (clamp-step with wedging: 1.13e-3 -> 3.9e-6; 3.0e-6 with 2 everywhere).
+  // The default takes the frames near the stop in 2 substeps of one W: the
+  // ledger closes as with 2 substeps everywhere, at one step per frame off
+  // it; so it does with a W of its own for every substep.
   const cvt::RomSimConfig def = cvt::sim_config_of(s);
   CHECK(def.stop_substeps == 2);
+  CHECK(def.stop_keep_w);
   const RunEnd refined = run<double>(s, def);
   CHECK(refined.fault == cvt::RomFault::none);
   CHECK(refined.residual_rel < 1e-5);
+  cvt::RomSimConfig fresh_w = def;
+  fresh_w.stop_keep_w = false;
+  const RunEnd refined_fresh = run<double>(s, fresh_w);
+  CHECK(refined_fresh.fault == cvt::RomFault::none);
+  CHECK(refined_fresh.residual_rel < 1e-5);
+  CHECK(refined_fresh.max_pen_m < 0.5e-3);
   cvt::RomSimConfig two = plain;
   two.substeps = 2;
   const RunEnd everywhere = run<double>(s, two);
@@ -353,9 +360,10 @@ TEST_CASE("wedging: the end stop is resolved by finer steps only while the chain
   CHECK(softer.max_pen_m > 1e-3);
   CHECK(refined.max_pen_m < 0.5e-3);
   MESSAGE("ledger residual / flows on clamp-step with wedging (chain on the hub stop): one step per frame ",
-          one.residual_rel, ", 2 substeps near the stop ", refined.residual_rel, ", 2 substeps everywhere ",
-          everywhere.residual_rel, "; 1e6 N/m stop at one step ", softer.residual_rel, ", deepest ",
-          softer.max_pen_m * 1e3, " mm past the travel (1e7 N/m refined: ", refined.max_pen_m * 1e3, " mm)");
+          one.residual_rel, ", 2 substeps of one W near the stop ", refined.residual_rel, " (a W each ",
+          refined_fresh.residual_rel, "), 2 substeps everywhere ", everywhere.residual_rel, "; 1e6 N/m stop at one step ",
+          softer.residual_rel, ", deepest ", softer.max_pen_m * 1e3, " mm past the travel (1e7 N/m refined: ",
+          refined.max_pen_m * 1e3, " mm, a W each ", refined_fresh.max_pen_m * 1e3, " mm)");
   // Only frames on the stop pay: before the clamp drop at 1 s none are.
   cvt::RomSimulator<double, kWedgeRoad> sim(s.params, def);
   sim.reset(s.initial, cvt::scene_inputs_at<double>(s, 0.0));
