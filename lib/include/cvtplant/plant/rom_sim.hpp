@@ -109,6 +109,12 @@ class RomSimulator {
     if (fault_ != RomFault::none) return fault_;
     fault_ = rom_input_fault(u.tau_in_Nm, u.tau_load_Nm, u.clamp_N);
     if (fault_ != RomFault::none) return fault_;
+    // docs/rom.md#tension: without the actuator the clamping input sets the
+    // chain's axial force and with it the creep, which the contact carries; a
+    // new command makes the contact of the frame's start stale.
+    if constexpr (Plant::Layout::kTension && !Plant::Layout::kAxial) {
+      if (!plant_.constants().ten_fixed && !(u.clamp_N == plant_.inputs.clamp_N)) contact_stale_ = true;
+    }
     plant_.inputs = u;
     if (contact_stale_) refresh_contact();
     const State x_prev = x_;
