@@ -24,8 +24,12 @@ struct Case {
   void (*edit)(Scene&) = nullptr;
 };
 
-// tools/scenes/seed-case1-tension.toml: the seed case on fixed sheaves.
+// The built-in seed-case1 runs the seed's fixed sheaves (docs/rom.md#tension);
+// the rows that give it the axial feature hold its sheave by the clamping
+// actuator instead (tools/scenes/seed-case1-clamped.toml and, with the
+// tension state, its clamped regime).
 inline void fixed_sheaves(Scene& s) { s.params.fixed_sheaves = true; }
+inline void clamped_sheaves(Scene& s) { s.params.fixed_sheaves = false; }
 // tools/scenes/seed-case1-ripple.toml: the same with the link-passing ripple
 // (docs/rom.md#link-ripple), and with the ripple off (g = 0).
 inline void fixed_sheaves_ripple(Scene& s) {
@@ -43,6 +47,9 @@ void for_each_case(Visitor&& v) {
   namespace f = rom_feature;
   v.template visit<0>(Case{"scene/oscillator-coulomb", "oscillator-coulomb", 0});
   v.template visit<0>(Case{"scene/oscillator-stribeck", "oscillator-stribeck", 0});
+  // The seed case under its clamping actuator (seed-case1's inputs on the
+  // axial plant, tools/scenes/seed-case1-clamped.toml): the default frame of
+  // the cost goals.
   v.template visit<f::axial>(Case{"scene/seed-case1", "seed-case1", 0});
   // The default scene's own choices (docs/rom.md#cost): without the ledger,
   // and without it in linearly implicit Euler (its error against the
@@ -71,10 +78,11 @@ void for_each_case(Visitor&& v) {
       Case{"scene/ratio-control/no-ledger", "ratio-control", 0, false});
   v.template visit<f::axial | f::road_load | f::wedging>(Case{"scene/clamp-step+wedging-on-stop", "clamp-step", 0});
   // The chain's tension state (docs/rom.md#tension): the seed case on fixed
-  // sheaves (tools/scenes/seed-case1-tension.toml), and with its clamping
+  // sheaves (the built-in seed-case1's own plant), and with its clamping
   // actuator (the sheave held off its stop by the 3.3 kN).
   v.template visit<f::tension>(Case{"scene/seed-case1-tension", "seed-case1", 0, true, nullptr, &fixed_sheaves});
-  v.template visit<f::axial | f::tension>(Case{"feature/seed-case1+tension", "seed-case1", 0});
+  v.template visit<f::axial | f::tension>(
+      Case{"feature/seed-case1+tension", "seed-case1", 0, true, nullptr, &clamped_sheaves});
   // Chordal action with the tension feature at the scene's 4 substeps, with
   // and without the ripple: the ripple's own cost (docs/rom.md#link-ripple).
   v.template visit<f::tension | f::polygon>(

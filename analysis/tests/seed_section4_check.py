@@ -5,12 +5,18 @@ Runs the one-command pipeline on seed-case1 and seed-case2 and checks real
 properties of what it reports, not just that it ran:
   - the verdict is one of the five allowed values and agrees with the evidence
     printed beside it (the rules of docs/analysis.md#classify);
-  - the driver axial force is constant after the transient: the ROM's axial
-    subsystem is linear, one-way coupled and starts at the static equilibrium
-    of a constant 3.3 kN command (docs/rom.md#axial), so its std must be below
-    1e-9 of its mean and the mean equals the command to 1e-9 (double round-off
-    of K_ax * (F/K_ax) is ~1e-16 relative; 1e-9 is the constant-series
+  - seed-case2 (under its clamping actuator): the driver axial force is
+    constant after the transient: the ROM's axial subsystem is linear,
+    one-way coupled and starts at the static equilibrium of a constant 3.3 kN
+    command (docs/rom.md#axial), so its std must be below 1e-9 of its mean
+    and the mean equals the command to 1e-9 (double round-off of
+    K_ax * (F/K_ax) is ~1e-16 relative; 1e-9 is the constant-series
     threshold of the pipeline);
+  - seed-case1 (the seed's fixed sheaves with the chain's tension state,
+    docs/rom.md#tension): the axial force is the chain's own, so it moves,
+    and as the chain speeds up its centrifugal tension unloads the wrap: the
+    mean after the transient lies below the settled pretension's axial force
+    at rest, T_max theta1 / (2 tan beta0) = 2994.4 N, and above zero;
   - on the transmitted torque (the signal that moves) the delay lies in
     1..N/10 samples, the dimension in 1..10, and the pipeline's numbers are
     self-consistent (the FNN dimension is the first m whose fraction is
@@ -123,10 +129,15 @@ def run_scene(binary, tmp, scene, t_end):
             err = png_valid(f)
             check(err is None, "%s is a valid PNG%s" % (f, "" if err is None else ": " + err))
     fax = sigs["F_ax"]
-    check(fax["constant"] and fax["classification"] == "fixed_point",
-          "%s F_ax: constant -> fixed_point (std %g)" % (scene, fax["stats"]["std"]))
-    check(abs(fax["stats"]["mean"] - 3300.0) <= 1e-9 * 3300.0 and fax["stats"]["std"] <= 1e-9 * 3300.0,
-          "%s F_ax: equals the 3.3 kN command (mean %.12g)" % (scene, fax["stats"]["mean"]))
+    if scene == "seed-case1":
+        check(not fax["constant"], "%s F_ax: the chain's own, not constant (std %g)" % (scene, fax["stats"]["std"]))
+        check(0.0 < fax["stats"]["mean"] < 2994.4,
+              "%s F_ax: unloaded below the pretension's 2994.4 N (mean %.6g)" % (scene, fax["stats"]["mean"]))
+    else:
+        check(fax["constant"] and fax["classification"] == "fixed_point",
+              "%s F_ax: constant -> fixed_point (std %g)" % (scene, fax["stats"]["std"]))
+        check(abs(fax["stats"]["mean"] - 3300.0) <= 1e-9 * 3300.0 and fax["stats"]["std"] <= 1e-9 * 3300.0,
+              "%s F_ax: equals the 3.3 kN command (mean %.12g)" % (scene, fax["stats"]["mean"]))
     tq = sigs["torque_transmitted"]
     check(fax["stats"]["unit"] == "N" and tq["stats"]["unit"] == "N m",
           "%s stats name their units (%r, %r)" % (scene, fax["stats"]["unit"], tq["stats"]["unit"]))

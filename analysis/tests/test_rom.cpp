@@ -13,8 +13,11 @@
 using namespace cvt::analysis;
 
 TEST_CASE("ROM signals: 1 ms samples; the driver axial force stays at the 3.3 kN command") {
-  const cvt::Scene& seed1 = *cvt::find_builtin_scene("seed-case1");
-  const RomSeries r = rom_scene_series(seed1, "seed-case1", {"F_ax", "torque_transmitted"}, 2.0);
+  // seed-case1's inputs under its clamping actuator (tools/scenes/seed-case1-clamped.toml;
+  // the built-in runs the tension plant on fixed sheaves, docs/rom.md#tension).
+  cvt::Scene seed1 = *cvt::find_builtin_scene("seed-case1");
+  seed1.features = cvt::rom_feature::axial;
+  const RomSeries r = rom_scene_series(seed1, "seed-case1-clamped", {"F_ax", "torque_transmitted"}, 2.0);
   CHECK(r.fault == "none");
   CHECK(r.frame_s == 1e-3);
   REQUIRE(r.t.size() == 2001);
@@ -26,7 +29,7 @@ TEST_CASE("ROM signals: 1 ms samples; the driver axial force stays at the 3.3 kN
   // The torque does move (the driveline's torsional transient): > 10 N m range.
   const auto& tq = r.signal.at("torque_transmitted");
   CHECK(*std::max_element(tq.begin(), tq.end()) - *std::min_element(tq.begin(), tq.end()) > 10.0);
-  CHECK_THROWS_AS(rom_scene_series(seed1, "seed-case1", {"nope"}, 1.0), InputError);
+  CHECK_THROWS_AS(rom_scene_series(seed1, "seed-case1-clamped", {"nope"}, 1.0), InputError);
   cvt::Scene bad = seed1;
   bad.features = cvt::rom_feature::wedging;  // wedging without the axial feature: no plant
   CHECK_THROWS_AS(rom_scene_series(bad, "bad", {"F_ax"}, 1.0), InputError);
@@ -34,6 +37,7 @@ TEST_CASE("ROM signals: 1 ms samples; the driver axial force stays at the 3.3 kN
 
 TEST_CASE("ROM signals run every feature set: chordal action makes the transmitted torque ripple") {
   cvt::Scene s = *cvt::find_builtin_scene("seed-case1");
+  s.features = cvt::rom_feature::axial;  // under its clamping actuator (the polygon plants have no tension state)
   s.substeps = 4;  // chordal action needs >= 4 substeps (docs/rom.md#polygon)
   const RomSeries plain = rom_scene_series(s, "plain", {"omega1"}, 1.0);
   s.features |= cvt::rom_feature::polygon;
@@ -59,9 +63,14 @@ TEST_CASE("ROM spectrum (seed-case1): axial exponents exact, the rest equal J's 
   // seed-case2 settles at a slower slip (stiffest eigenvalue 5.9e4 1/s, so a
   // 4.5x smaller step): it is run by the CLI (docs) rather than here, to keep
   // this suite short.
-  for (const char* name : {"seed-case1"}) {
+  // The seed case under its clamping actuator (tools/scenes/seed-case1-clamped.toml):
+  // the axial plant's nine states. The built-in seed-case1 runs the tension
+  // plant on fixed sheaves (six states, no actuator).
+  cvt::Scene clamped = *cvt::find_builtin_scene("seed-case1");
+  clamped.features = cvt::rom_feature::axial;
+  for (const char* name : {"seed-case1-clamped"}) {
     CAPTURE(name);
-    const Model& s = find_model(name);
+    const Model s = rom_model(clamped, name);
     BenettinOptions o = s.defaults;  // transient 30 s (ros2); dt, QR interval from the stiffness
     // Warm-up 5 s: the deviation vectors must separate the symmetry direction
     // from the torsional pair, which decays at only ~0.95 1/s (with 1 s the

@@ -533,6 +533,7 @@ Sample ChainModel::sample(double t_s, const double* y) const {
   link_trig(y);
   std::vector<int> in_contact(static_cast<std::size_t>(n_links_), -1);
   double slip_sum[2] = {0, 0};
+  double slip_lo[2] = {INFINITY, INFINITY}, slip_hi[2] = {-INFINITY, -INFINITY};
   for (int i = 0; i < n_links_; ++i) {
     const double* q = y + 6 * i;
     e_kin += 0.5 * p_.link_mass_kg * (q[3] * q[3] + q[4] * q[4]) + 0.5 * inertia_ * q[5] * q[5];
@@ -544,10 +545,17 @@ Sample ChainModel::sample(double t_s, const double* y) const {
       out.chain_torque_Nm[j] += cf.pulley_moment_Nm;
       out.wrap_links[j] += 1;
       slip_sum[j] -= cf.slip_t_m_s;  // surface speed minus bolt speed
+      slip_lo[j] = std::min(slip_lo[j], -cf.slip_t_m_s);
+      slip_hi[j] = std::max(slip_hi[j], -cf.slip_t_m_s);
       e_el += cf.potential_J;
     }
   }
-  for (int j = 0; j < 2; ++j) out.slip_m_s[j] = out.wrap_links[j] > 0 ? slip_sum[j] / out.wrap_links[j] : kNaN;
+  for (int j = 0; j < 2; ++j) {
+    const bool any = out.wrap_links[j] > 0;
+    out.slip_m_s[j] = any ? slip_sum[j] / out.wrap_links[j] : kNaN;
+    out.slip_min_m_s[j] = any ? slip_lo[j] : kNaN;
+    out.slip_max_m_s[j] = any ? slip_hi[j] : kNaN;
+  }
   double t_sum[2] = {0, 0};
   int t_count[2] = {0, 0};
   for (int i = 0; i < n_links_; ++i) {

@@ -116,6 +116,13 @@ TEST_CASE("Euler-Eytelwein at gross slip: T_tight / T_slack = exp(mu0 theta1 / s
       ++n;
       CHECK(s.slip_m_s[0] > 1.3);            // driver wrap slides
       CHECK(std::fabs(s.slip_m_s[1]) < 0.02);  // driven wrap holds the chain
+      // The mean lies in the bolts' range, and the driver wrap slides as a
+      // whole: every bolt forward by more than the gross-slip threshold.
+      CHECK(s.slip_min_m_s[0] <= s.slip_m_s[0]);
+      CHECK(s.slip_m_s[0] <= s.slip_max_m_s[0]);
+      CHECK(s.slip_min_m_s[1] <= s.slip_m_s[1]);
+      CHECK(s.slip_m_s[1] <= s.slip_max_m_s[1]);
+      CHECK(s.slip_min_m_s[0] > 1.0);
     }
   const double capstan = std::exp(kMu0 * wrap_driver_rad() / std::sin(kBeta0));
   CHECK(capstan == doctest::Approx(17.94).epsilon(1e-3));

@@ -184,8 +184,10 @@ class Progress(unittest.TestCase):
     def test_terminal_shows_a_bar_and_clears_it(self):
         # stderr on a pseudo-terminal, stdout on a pipe.
         master, slave = pty.openpty()
+        # CI runners may set CI, which turns the bar off by design (docs/cli.md#progress).
+        env = {k: v for k, v in os.environ.items() if k != "CI"}
         p = subprocess.Popen([CLI, "mbd", "--case", "1", "--t-end", "1", "--json"], stdout=subprocess.PIPE,
-                             stderr=slave, text=True)
+                             stderr=slave, text=True, env=env)
         os.close(slave)
         seen = b""
         while True:

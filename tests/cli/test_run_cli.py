@@ -11,6 +11,9 @@ import unittest
 CLI = sys.argv.pop(1) if len(sys.argv) > 1 else "cvtplant"
 HERE = os.path.dirname(os.path.abspath(__file__))
 SCENES = os.path.join(HERE, "..", "..", "tools", "scenes")
+# The seed case under its clamping actuator: the built-in seed-case1 runs the
+# tension plant on fixed sheaves, which the adaptive solver does not have.
+CLAMPED = os.path.join(SCENES, "seed-case1-clamped.toml")
 BUILTIN = ["oscillator-coulomb", "oscillator-stribeck", "seed-case1", "seed-case2", "clamp-step", "tip-in",
            "gross-slip", "ratio-control"]
 
@@ -184,12 +187,12 @@ class Run(unittest.TestCase):
             self.assertAlmostEqual(float(first["geometric_ratio"]), 0.1143 / 0.0762, places=9)
 
     def test_tension_scene_logs_the_chain_tension(self):
-        # docs/rom.md#tension: the seed case on fixed sheaves; the tension log
-        # group and the JSON's final.tension.
+        # docs/rom.md#tension: the built-in seed-case1 (the seed case on fixed
+        # sheaves) with the tension log group; the JSON's final.tension.
         with tempfile.TemporaryDirectory() as d:
             out = os.path.join(d, "t.csv")
-            r = run("run", "--scene", os.path.join(SCENES, "seed-case1-tension.toml"), "--t-end", "3", "--csv", out,
-                    "--json")
+            p = write(d, "t.toml", 'base = "seed-case1"\nlog = ["torques", "ratios", "tension"]\n')
+            r = run("run", "--scene", p, "--t-end", "3", "--csv", out, "--json")
             self.assertEqual(r.returncode, 0, r.stderr)
             j = json.loads(r.stdout)
             with open(out) as f:
@@ -240,7 +243,7 @@ class Adaptive(unittest.TestCase):
         self.assertLess(abs(ja["energy"]["residual_rel"]), 1e-4)
 
     def test_steps_over_frames_where_the_inputs_hold(self):
-        r = run("run", "--scene", "seed-case1", "--t-end", "5", "--solver", "adaptive", "--json")
+        r = run("run", "--scene", CLAMPED, "--t-end", "5", "--solver", "adaptive", "--json")
         self.assertEqual(r.returncode, 0, r.stderr)
         j = json.loads(r.stdout)
         self.assertEqual(j["frames"], 5000)
@@ -256,7 +259,7 @@ class Adaptive(unittest.TestCase):
         self.assertEqual(a, b)
 
     def test_step_cap_is_a_run_error(self):
-        r = run("run", "--scene", "seed-case1", "--t-end", "2", "--solver", "adaptive", "--max-steps", "20")
+        r = run("run", "--scene", CLAMPED, "--t-end", "2", "--solver", "adaptive", "--max-steps", "20")
         self.assertEqual(r.returncode, 1)
         self.assertIn("--max-steps", r.stderr)
         # No summary of a final frame the run never reached.
@@ -265,13 +268,13 @@ class Adaptive(unittest.TestCase):
     def test_refusals(self):
         cases = [
             (("--scene", "ratio-control", "--solver", "adaptive"), "wedging"),
-            (("--scene", "seed-case1", "--solver", "adaptive", "--scalar", "float"), "double"),
-            (("--scene", "seed-case1", "--solver", "adaptive", "--substeps", "4"), "--substeps"),
-            (("--scene", "seed-case1", "--solver", "adaptive", "--integrator", "rk4"), "--integrator"),
-            (("--scene", "seed-case1", "--rtol", "1e-6"), "--solver adaptive"),
-            (("--scene", "seed-case1", "--solver", "adaptive", "--rtol", "nan"), "--rtol"),
-            (("--scene", "seed-case1", "--solver", "adaptive", "--atol", "0"), "--atol"),
-            (("--scene", "seed-case1", "--solver", "implicit"), "--solver"),
+            (("--scene", CLAMPED, "--solver", "adaptive", "--scalar", "float"), "double"),
+            (("--scene", CLAMPED, "--solver", "adaptive", "--substeps", "4"), "--substeps"),
+            (("--scene", CLAMPED, "--solver", "adaptive", "--integrator", "rk4"), "--integrator"),
+            (("--scene", CLAMPED, "--rtol", "1e-6"), "--solver adaptive"),
+            (("--scene", CLAMPED, "--solver", "adaptive", "--rtol", "nan"), "--rtol"),
+            (("--scene", CLAMPED, "--solver", "adaptive", "--atol", "0"), "--atol"),
+            (("--scene", CLAMPED, "--solver", "implicit"), "--solver"),
         ]
         for args, part in cases:
             r = run("run", *args)
@@ -351,15 +354,14 @@ class BadInput(unittest.TestCase):
             ('features = ["axial", "tension"]\n[params]\nfixed_sheaves = true\n', (),
              (":4:", "params.fixed_sheaves", "axial")),
             ('features = ["axial", "wedging", "tension"]\n', (), (":2:", "features", "wedging")),
-            ('log = ["torques", "tension"]\n', (), (":2:", "log", "tension feature")),
+            ('features = ["axial"]\nlog = ["torques", "tension"]\n', (), (":3:", "log", "tension feature")),
             (tension + "chain_stiffness_N = 4e7\n", ("--scalar", "fixed"), ("chain_stiffness_N", "fixed-point range")),
         ]
         with tempfile.TemporaryDirectory() as d:
             for i, (text, flags, parts) in enumerate(cases):
                 p = write(d, "t%d.toml" % i, 'base = "seed-case1"\n' + text)
                 self.assert_usage(run("run", "--scene", p, *flags), *[p + x if x.startswith(":") else x for x in parts])
-        tension = os.path.join(SCENES, "seed-case1-tension.toml")
-        self.assert_usage(run("run", "--scene", tension, "--solver", "adaptive"), "--solver adaptive", "tension")
+        self.assert_usage(run("run", "--scene", "seed-case1", "--solver", "adaptive"), "--solver adaptive", "tension")
 
     def test_rom_accuracy_refuses_a_plant_the_scalar_lacks(self):
         # The fixed-point plants have no wedging: the candidates are refused

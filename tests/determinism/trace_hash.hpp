@@ -71,6 +71,7 @@ std::uint64_t oscillator_trace_hash(Method m, double h_s, long steps) {
 template <class T, std::uint32_t F>
 std::uint64_t rom_trace_hash(const char* scene_name, double seconds) {
   Scene s = *find_builtin_scene(scene_name);
+  s.features = F;  // the scene's inputs and parameters on the plant of mask F
   s.t_end_s = seconds;
   TraceHash hash;
   const RomFault fault = run_scene<T, F>(s, sim_config_of(s), [&](long, double, const RomSimulator<T, F>& sim) {
@@ -83,7 +84,9 @@ std::uint64_t rom_trace_hash(const char* scene_name, double seconds) {
 
 // The ROM hash cases, shared by the host/aarch64 program and the Cortex-M
 // image so both print the same labels: out(label, hash) for each.
-// seed-case1 covers the start from rest and the grip with the axial feature;
+// seed-case1 covers the start from rest and the grip with the axial feature
+// (its inputs on the axial plant: tools/scenes/seed-case1-clamped.toml; the
+// built-in itself runs the tension plant on fixed sheaves);
 // clamp-step adds road load (tanh) and a flare in gross slip.
 template <class T, class Out>
 void rom_trace_hashes(Out&& out) {

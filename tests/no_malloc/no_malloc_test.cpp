@@ -96,6 +96,8 @@ int main() {
   run_rom_frames<float, f::all>("clamp-step");
   run_rom_frames<cvt::q16_16, f::basic>("clamp-step");
   run_rom_frames<double, 0>("seed-case1");
+  run_rom_frames<double, f::tension>("seed-case1");
+  run_rom_frames<float, f::tension>("seed-case1");
   Eigen::internal::set_is_malloc_allowed(true);
   check(g_news == news_rom, "no operator new during drive-train plant frames");
 

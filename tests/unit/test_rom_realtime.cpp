@@ -67,8 +67,7 @@ namespace {
 // point carries its rounding remainders from step to step
 // (integrate/increment.hpp); the plain calls carry theirs too.
 template <class T, std::uint32_t F>
-void check_cache_is_transparent(const char* scene) {
-  const cvt::Scene& s = *cvt::find_builtin_scene(scene);
+void check_cache_is_transparent(const cvt::Scene& s) {
   cvt::RomSimConfig cfg = cvt::sim_config_of(s);
   cfg.w_slope_floor = false;
   cfg.substeps = 2;
@@ -97,6 +96,10 @@ void check_cache_is_transparent(const char* scene) {
   }
   CHECK(all_same);
 }
+template <class T, std::uint32_t F>
+void check_cache_is_transparent(const char* scene) {
+  check_cache_is_transparent<T, F>(*cvt::find_builtin_scene(scene));
+}
 
 }  // namespace
 
@@ -104,7 +107,17 @@ TEST_CASE("the shared friction evaluation does not change the trajectory") {
   check_cache_is_transparent<double, f::axial>("seed-case2");
   check_cache_is_transparent<float, f::axial | f::road_load>("tip-in");
   check_cache_is_transparent<cvt::q16_16, f::axial>("seed-case1");
+  check_cache_is_transparent<cvt::q16_16, f::tension>("seed-case1");
   check_cache_is_transparent<double, 0>("gross-slip");
+  // Wedging shares its contact with the partials of each lump (docs/rom.md#cost).
+  check_cache_is_transparent<float, f::axial | f::road_load | f::wedging>("ratio-control");
+  // With the chain's tension and no actuator the clamping input sets the
+  // chain's axial force, which the contact carries (docs/rom.md#tension): a
+  // command that changes every frame must reach the frame's first stage.
+  cvt::Scene tension = *cvt::find_builtin_scene("seed-case1");
+  tension.features = f::tension;
+  tension.clamp = cvt::ramp_profile(3300.0, 1500.0, 0.1, 0.5);
+  check_cache_is_transparent<double, f::tension>(tension);
 }
 
 TEST_CASE("slope floor: W sees the stick stiffness only inside the regularisation layer") {
@@ -237,5 +250,7 @@ TEST_CASE("energy ledger off: same trajectory, no booking, essential checks kept
   check_ledger_off<double, f::axial>("seed-case1");
   check_ledger_off<float, f::axial>("seed-case1");
   check_ledger_off<cvt::q16_16, f::axial>("seed-case1");
+  check_ledger_off<double, f::tension>("seed-case1");
+  check_ledger_off<cvt::q16_16, f::tension>("seed-case1");
   check_ledger_off<double, f::axial | f::road_load | f::wedging>("ratio-control");
 }

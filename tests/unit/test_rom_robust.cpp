@@ -94,6 +94,8 @@ TEST_CASE("scene dispatch: a firmware plant set refuses every scene it cannot ru
   using Set = cvt::RomPlantSet<Q, f::axial, kTipIn>;
   cvt::SceneSimulator<Set> holder;
   cvt::Scene s = *cvt::find_builtin_scene("seed-case1");
+  CHECK_FALSE(holder.load(s).ok);  // its plant (tension on fixed sheaves) is not in the set
+  s.features = f::axial;           // its inputs under the clamping actuator are
   CHECK(holder.load(s).ok);
   s.features = f::axial | f::polygon;
   CHECK_FALSE(holder.load(s).ok);

@@ -22,8 +22,9 @@ namespace f = cvt::rom_feature;
 template <class T>
 using BuiltinPlants =
     std::conditional_t<std::is_floating_point<T>::value,
-                       cvt::RomPlantSet<T, 0, f::axial, f::axial | f::road_load, f::axial | f::road_load | f::wedging>,
-                       cvt::RomPlantSet<T, 0, f::axial, f::axial | f::road_load>>;  // wedging: floating point only
+                       cvt::RomPlantSet<T, 0, f::axial, f::axial | f::road_load, f::axial | f::road_load | f::wedging,
+                                        f::tension>,
+                       cvt::RomPlantSet<T, 0, f::axial, f::axial | f::road_load, f::tension>>;  // wedging: floating point only
 
 struct EnergyResult {
   cvt::RomFault fault = cvt::RomFault::none;
@@ -244,7 +245,7 @@ TEST_CASE("scene validation: profile times >= 0, sines below half the frame rate
   const cvt::SceneIssue q = cvt::check_scalar_range<cvt::q16_16>(b);
   CHECK_FALSE(q.ok);
   CHECK(std::string(q.field) == "clamp");
-  cvt::SceneSimulator<cvt::RomPlantSet<cvt::q16_16, f::axial>> fixed;
+  cvt::SceneSimulator<cvt::RomPlantSet<cvt::q16_16, f::axial, f::tension>> fixed;
   CHECK(std::string(fixed.load(b).field) == "clamp");
   CHECK_FALSE(fixed.loaded());
   b.clamp = cvt::constant_profile(32767.0);

@@ -5,6 +5,8 @@
 // differences, the energy ledger with the creep loss, the watchdog.
 #include <doctest/doctest.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -236,11 +238,11 @@ TEST_CASE("tension: gross slip starts where 2 mu0 F_ax r1 / cos(beta0) falls bel
 }
 
 TEST_CASE("tension: the energy ledger closes with the creep loss over the seed case on fixed sheaves") {
-  // seed-case1 with the feature on fixed sheaves (tools/scenes/seed-case1-tension.toml),
-  // 10 s: creep, centrifugal unloading and gross slip from about 5.5 s.
-  cvt::Scene s = *cvt::find_builtin_scene("seed-case1");
-  s.features = f::tension;
-  s.params.fixed_sheaves = true;
+  // The built-in seed-case1 (the feature on fixed sheaves, the calibrated
+  // set), 10 s: creep, centrifugal unloading and gross slip from about 5.3 s.
+  const cvt::Scene s = *cvt::find_builtin_scene("seed-case1");
+  REQUIRE(s.features == f::tension);
+  REQUIRE(s.params.fixed_sheaves);
   double residual_rel = 0, creep_J = 0, scale = 0, worst = 0;
   bool slid = false;
   const cvt::RomFault fault = cvt::run_scene<double, f::tension>(s, cvt::sim_config_of(s), [&](long i, double, const auto& sim) {
@@ -356,13 +358,12 @@ TEST_CASE("tension: no strand carries compression, so kL + T_s >= kL and the cre
 }
 
 TEST_CASE("tension: fixed point faults tension-out-of-range where m' v_c^2 leaves q16.16, float runs on") {
-  // sqrt(32767 N / (1.79 x 3.09 kg/m)) = 77 m/s: 674 rad/s at r2.
+  // The built-in seed-case1's calibrated kappa: sqrt(32767 N / (1.7355 x
+  // 3.0911 kg/m)) = 78.2 m/s, 684 rad/s at r2.
   cvt::Scene s = *cvt::find_builtin_scene("seed-case1");
-  s.features = f::tension;
-  s.params.fixed_sheaves = true;
   s.t_end_s = 0.01;
   const double w_lim = std::sqrt(32767.0 / (s.params.centrifugal_gain * s.params.chain_mass_kg_m)) / s.params.r2_m;
-  CHECK(w_lim == doctest::Approx(673.5).epsilon(0.01));
+  CHECK(w_lim == doctest::Approx(683.8).epsilon(0.01));
   for (const double w2 : {0.98 * w_lim, 1.02 * w_lim}) {
     CAPTURE(w2);
     s.initial.omega2_rad_s = w2;
@@ -380,9 +381,7 @@ TEST_CASE("tension: fixed point faults tension-out-of-range where m' v_c^2 leave
 }
 
 TEST_CASE("tension: float and q16.16 follow double over the seed case on fixed sheaves") {
-  cvt::Scene s = *cvt::find_builtin_scene("seed-case1");
-  s.features = f::tension;
-  s.params.fixed_sheaves = true;
+  cvt::Scene s = *cvt::find_builtin_scene("seed-case1");  // the feature on fixed sheaves
   s.t_end_s = 5.0;  // gripping, before gross slip makes the end state sensitive
   auto speeds = [&](auto tag) {
     using T = decltype(tag);
@@ -406,6 +405,58 @@ TEST_CASE("tension: float and q16.16 follow double over the seed case on fixed s
     CHECK(fl[i] == doctest::Approx(d[i]).epsilon(1e-4));
     CHECK(q[i] == doctest::Approx(d[i]).epsilon(2e-2));
   }
+}
+
+TEST_CASE("tension: seed case 2's exit lump sliding at the creep speed over the Stribeck peak has an unstable mode") {
+  // docs/validation.md#seed-case2: why tools/scenes/seed-case2-tension.toml
+  // (the built-in seed-case1 with Table 2 case 2) takes four steps per frame.
+  // With creep the exit lump slides at eps v_c, which in case 2 reaches the
+  // Stribeck peak within the first half second; beyond the peak the
+  // coefficient falls with slip and the lump's mode against the chain's
+  // springs grows. The exact Jacobian (no slope floor: both lumps slide far
+  // outside the floor's 1/lambda layer, so W is J there) has eigenvalues
+  // with a positive real part, and the lump runs a cycle through the peak.
+  cvt::Scene s = *cvt::find_builtin_scene("seed-case1");
+  s.params.friction = cvt::friction_presets::table2_case2<double>();
+  s.substeps = 4;
+  s.t_end_s = 0.5;
+  using Sim = cvt::RomSimulator<double, f::tension>;
+  const double floor_speed = 1.0 / s.params.friction.lambda_s_m;
+  double max_growth = -1e300, growth_im = 0, slip2_lo = 1e300, slip2_hi = -1e300, slip1_max = 0, t_max = 0;
+  const cvt::RomFault fault = cvt::run_scene<double, f::tension>(s, cvt::sim_config_of(s), [&](long, double t, const Sim& sim) {
+    if (t < 0.4) return true;
+    const auto o = sim.outputs();
+    slip2_lo = std::min(slip2_lo, -o.v_rel2_m_s);
+    slip2_hi = std::max(slip2_hi, -o.v_rel2_m_s);
+    slip1_max = std::max(slip1_max, std::fabs(o.v_rel1_m_s));
+    CHECK(std::fabs(o.v_rel1_m_s) > floor_speed);
+    CHECK(std::fabs(o.v_rel2_m_s) > floor_speed);
+    const auto& x = sim.state();
+    typename Sim::Plant::Jacobian J;
+    sim.plant().jacobian(x, sim.plant().contact(x), J, false);
+    const Eigen::EigenSolver<Eigen::MatrixXd> es(J);
+    for (int k = 0; k < J.rows(); ++k)
+      if (es.eigenvalues()[k].real() > max_growth) {
+        max_growth = es.eigenvalues()[k].real();
+        growth_im = es.eigenvalues()[k].imag();
+        t_max = t;
+      }
+    return true;
+  });
+  REQUIRE(fault == cvt::RomFault::none);
+  MESSAGE("seed case 2, tension, fixed sheaves, 0.4-0.5 s at 4 substeps: exit lump slip " << slip2_lo << " .. "
+          << slip2_hi << " m/s, entry lump |v_rel| up to " << slip1_max << " m/s, largest growth rate " << max_growth
+          << " +- " << std::fabs(growth_im) << "i 1/s at " << t_max << " s");
+  CHECK(max_growth > 100.0);      // an unstable mode, growing by e in under 10 ms
+  CHECK(std::fabs(growth_im) > 0.0);  // oscillatory
+  CHECK(slip2_lo < 0.25);         // the exit lump's slip cycles through the peak
+  CHECK(slip2_hi > 0.5);
+  CHECK(slip1_max < 0.05);        // while the entry lump grips
+  // One step per 1 ms frame does not follow the cycle: the ledger's watchdog
+  // stops it within the first half second.
+  s.substeps = 1;
+  CHECK(cvt::run_scene<double, f::tension>(s, cvt::sim_config_of(s), [](long, double, const Sim&) { return true; }) ==
+        cvt::RomFault::energy_growth);
 }
 
 TEST_CASE("tension: scene validation names the field") {

@@ -330,14 +330,21 @@ TEST_CASE("wedging: the end stop is resolved by finer steps only while the chain
   // Unresolved: the ledger closes only to about 1e-3 of the flows.
   CHECK(one.residual_rel > 1e-4);
   CHECK(one.residual_rel < 5e-3);
-  // The default takes the frames near the stop in 2 substeps: the ledger
-  // closes as with 2 substeps everywhere, at one step per frame off it
-  // (clamp-step with wedging: 1.13e-3 -> 3.9e-6; 3.0e-6 with 2 everywhere).
+  // The default takes the frames near the stop in 2 substeps of one W: the
+  // ledger closes as with 2 substeps everywhere, at one step per frame off
+  // it; so it does with a W of its own for every substep.
   const cvt::RomSimConfig def = cvt::sim_config_of(s);
   CHECK(def.stop_substeps == 2);
+  CHECK(def.stop_keep_w);
   const RunEnd refined = run<double>(s, def);
   CHECK(refined.fault == cvt::RomFault::none);
   CHECK(refined.residual_rel < 1e-5);
+  cvt::RomSimConfig fresh_w = def;
+  fresh_w.stop_keep_w = false;
+  const RunEnd refined_fresh = run<double>(s, fresh_w);
+  CHECK(refined_fresh.fault == cvt::RomFault::none);
+  CHECK(refined_fresh.residual_rel < 1e-5);
+  CHECK(refined_fresh.max_pen_m < 0.5e-3);
   cvt::RomSimConfig two = plain;
   two.substeps = 2;
   const RunEnd everywhere = run<double>(s, two);
@@ -353,9 +360,10 @@ TEST_CASE("wedging: the end stop is resolved by finer steps only while the chain
   CHECK(softer.max_pen_m > 1e-3);
   CHECK(refined.max_pen_m < 0.5e-3);
   MESSAGE("ledger residual / flows on clamp-step with wedging (chain on the hub stop): one step per frame ",
-          one.residual_rel, ", 2 substeps near the stop ", refined.residual_rel, ", 2 substeps everywhere ",
-          everywhere.residual_rel, "; 1e6 N/m stop at one step ", softer.residual_rel, ", deepest ",
-          softer.max_pen_m * 1e3, " mm past the travel (1e7 N/m refined: ", refined.max_pen_m * 1e3, " mm)");
+          one.residual_rel, ", 2 substeps of one W near the stop ", refined.residual_rel, " (a W each ",
+          refined_fresh.residual_rel, "), 2 substeps everywhere ", everywhere.residual_rel, "; 1e6 N/m stop at one step ",
+          softer.residual_rel, ", deepest ", softer.max_pen_m * 1e3, " mm past the travel (1e7 N/m refined: ",
+          refined.max_pen_m * 1e3, " mm, a W each ", refined_fresh.max_pen_m * 1e3, " mm)");
   // Only frames on the stop pay: before the clamp drop at 1 s none are.
   cvt::RomSimulator<double, kWedgeRoad> sim(s.params, def);
   sim.reset(s.initial, cvt::scene_inputs_at<double>(s, 0.0));
@@ -438,8 +446,9 @@ TEST_CASE("wedging: scene validation") {
   CHECK(field(t) == "radial_mass_kg");
 }
 
-TEST_CASE_TEMPLATE("wedging: the right-hand side from the Jacobian's contact is derivative() bit for bit", T, double,
-                   float) {
+TEST_CASE_TEMPLATE("wedging: the right-hand side and the power terms from the shared contact are derivative() and "
+                   "the outputs' terms bit for bit",
+                   T, double, float) {
   using R = cvt::CvtRom<T, kWedgeRoad>;
   using LL = cvt::RomLayout<kWedgeRoad>;
   for (const auto& fr : {cvt::friction_presets::table2_case1<double>(), cvt::friction_presets::table2_case2<double>()}) {
@@ -458,15 +467,35 @@ TEST_CASE_TEMPLATE("wedging: the right-hand side from the Jacobian's contact is 
       typename R::State x = rom.initial_state(x0);
       x(LL::kRhoDot) = T(rhod);
       typename R::State f1, f2;
-      typename R::Jacobian J2;
+      // The contact the simulator evaluates once per state (docs/rom.md#cost)
+      // and shares between the Jacobian (compared with the dual-number
+      // Jacobian above), the right-hand side and the ledger's power terms.
+      const typename R::Contact c = rom.contact(x);
       rom.derivative(x, f1);
-      rom.jacobian_and_derivative(x, J2, f2);
-      // The right-hand side only: both Jacobians come from jacobian_wedge
-      // (compared with the dual-number Jacobian above).
+      rom.derivative(x, c, f2);
       bool same = true;
       for (int i = 0; i < R::kStates; ++i) same = same && std::memcmp(&f1(i), &f2(i), sizeof(T)) == 0;
       CAPTURE(rhod);
       CHECK(same);
+      // The power terms of docs/rom.md#energy-balance from the outputs'
+      // forces, torques and slip speeds (rom_outputs evaluates the friction
+      // separately): the ledger books the same power as before the sharing.
+      const cvt::RomOutputs<T> o = rom.outputs(x);
+      using A = cvt::RomAcc<T>;
+      const cvt::RomPower<A> pc = rom.power(x, c);
+      const A rd = A(x(LL::kRhoDot));
+      const A w1 = A(x(LL::kW1)), w2 = A(x(LL::kW2)), v1 = A(x(LL::kV1)), v2 = A(x(LL::kV2));
+      const auto& k = rom.constants();
+      const A sv1 = v1 + A(k.acc.wrap_g) * rd, sv2 = v2 + A(k.acc.wrap_g) * rd;
+      const A friction_W = -(A(o.friction1_N) * A(o.v_rel1_m_s) + A(o.friction2_N) * A(o.v_rel2_m_s)) -
+                           (A(o.radial_friction1_N) * rd * A(k.inv_cos1) + A(o.radial_friction2_N) * rd * A(k.inv_cos2));
+      const A damping_W = k.acc.c1 * (sv1 * sv1 + sv2 * sv2) + k.acc.c2 * (v1 - v2) * (v1 - v2) +
+                          k.acc.cs * A(x(LL::kDeltaDot)) * A(x(LL::kDeltaDot)) + k.acc.cr * rd * rd;
+      CHECK(pc.input_W == A(o.tau_in_Nm) * w1);
+      CHECK(pc.load_W == A(o.tau_load_Nm) * w2);
+      CHECK(pc.actuator_W == A(x(LL::kFh)) * A(x(LL::kDeltaDot)));
+      CHECK(pc.friction_loss_W == friction_W);
+      CHECK(pc.damping_loss_W == damping_W);
     }
   }
 }

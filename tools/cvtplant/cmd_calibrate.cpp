@@ -74,7 +74,7 @@ struct Options {
   std::string function = "apply";  // the header's function, cvt::calibrated::NAME(RomParams&)
   std::string out_dir = "validation";
   std::string start;  // parameter file to start from
-  std::string sheaves = "clamped";  // the reference's sheave mode
+  std::string sheaves = "scene";  // the reference's sheaves: each scene's, or one mode for all
   double t_end_s = 0;
   double rtol = 5e-7;
   long long max_steps = 20000000;
@@ -179,7 +179,7 @@ std::string command_line(const Options& o) {
   std::ostringstream s;
   s << "cvtplant calibrate --scene " << o.scenes << " --fit " << o.fit;
   if (!o.start.empty()) s << " --start " << o.start;
-  if (o.sheaves != "clamped") s << " --sheaves " << o.sheaves;
+  if (o.sheaves != "scene") s << " --sheaves " << o.sheaves;
   if (o.t_end_s > 0) s << " --t-end " << o.t_end_s;
   s << " --rtol " << o.rtol << " --every " << o.every << " --max-evals " << o.max_evals << " --out " << o.out;
   if (!o.header.empty()) s << " --header " << o.header;
@@ -249,7 +249,7 @@ Action register_calibrate(CLI::App& app) {
     for (const auto& n : names) {
       auto l = resolve_scene(n);
       std::string why;
-      if (!reference_params(l->scene, sheave_mode(o.sheaves), why))
+      if (!reference_params(l->scene, sheave_choice(o.sheaves), why))
         throw UsageError{"--scene " + n + ": the reference cannot run " + why};
       loaded.push_back(l);
       // --start moves the plant's parameters only; the reference runs the scene.
@@ -277,7 +277,7 @@ Action register_calibrate(CLI::App& app) {
       cvt::Scene ref_scene = loaded[li]->scene;
       ref_scene.t_end_s = c.scene.t_end_s;
       std::string why;
-      const auto mp = reference_params(ref_scene, sheave_mode(o.sheaves), why);
+      const auto mp = reference_params(ref_scene, sheave_choice(o.sheaves), why);
       cvt::mbd::RunOptions ro;
       ro.t_end_s = c.scene.t_end_s;
       ro.rtol = o.rtol;

@@ -20,13 +20,15 @@
 namespace cvtcli::validation {
 
 void Series::reserve(std::size_t n) {
-  for (auto* v : {&t_s, &omega1_rad_s, &omega2_rad_s, &F_ax1_N, &torque_driver_Nm, &slip1_m_s}) v->reserve(n);
+  for (auto* v : {&t_s, &omega1_rad_s, &omega2_rad_s, &F_ax1_N, &torque_driver_Nm, &slip1_m_s, &wrap_slip_m_s})
+    v->reserve(n);
 }
 
 Series Series::select(std::size_t n, std::size_t step) const {
   Series o;
-  std::vector<double> Series::*const cols[] = {&Series::t_s,     &Series::omega1_rad_s,     &Series::omega2_rad_s,
-                                               &Series::F_ax1_N, &Series::torque_driver_Nm, &Series::slip1_m_s};
+  std::vector<double> Series::*const cols[] = {&Series::t_s,          &Series::omega1_rad_s,     &Series::omega2_rad_s,
+                                               &Series::F_ax1_N,      &Series::torque_driver_Nm, &Series::slip1_m_s,
+                                               &Series::wrap_slip_m_s};
   for (const auto c : cols) {
     const std::vector<double>& from = this->*c;
     std::vector<double>& to = o.*c;
@@ -60,21 +62,43 @@ std::optional<cvt::mbd::TimeProfile> time_profile(const cvt::Profile& p, const c
 
 const char* sheave_mode_name(cvt::mbd::SheaveMode m) { return m == cvt::mbd::SheaveMode::fixed ? "fixed" : "clamped"; }
 
-CLI::Option* add_sheaves_option(CLI::App* sub, std::string& mode) {
+CLI::Option* add_sheaves_option(CLI::App* sub, std::string& choice) {
   return sub
-      ->add_option("--sheaves", mode,
-                   "The reference's sheaves: clamped (pushed by the scene's clamping) or fixed (the seed's pulleys; "
-                   "the axial force is then the reference's output)")
+      ->add_option("--sheaves", choice,
+                   "The reference's sheaves: scene (fixed for a scene whose plant has fixed sheaves, else clamped), "
+                   "clamped (pushed by the scene's clamping) or fixed (the seed's pulleys; the axial force is then "
+                   "the reference's output)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"clamped", "fixed"}));
+      ->check(CLI::IsMember({"scene", "clamped", "fixed"}));
 }
 
-cvt::mbd::SheaveMode sheave_mode(const std::string& name) {
-  return name == "fixed" ? cvt::mbd::SheaveMode::fixed : cvt::mbd::SheaveMode::clamped;
+SheaveChoice sheave_choice(const std::string& name) {
+  if (name == "fixed") return SheaveChoice::fixed;
+  if (name == "clamped") return SheaveChoice::clamped;
+  return SheaveChoice::scene;
 }
 
-std::optional<cvt::mbd::MbdParams> reference_params(const cvt::Scene& s, cvt::mbd::SheaveMode sheaves,
-                                                    std::string& why_not) {
+cvt::mbd::SheaveMode reference_sheaves(const cvt::Scene& s, SheaveChoice c) {
+  switch (c) {
+    case SheaveChoice::fixed: return cvt::mbd::SheaveMode::fixed;
+    case SheaveChoice::clamped: return cvt::mbd::SheaveMode::clamped;
+    case SheaveChoice::scene: break;
+  }
+  // fixed_sheaves acts only with the tension feature (docs/rom.md#tension);
+  // without it the plant's axial force is its clamping input.
+  const bool fixed = (s.features & cvt::rom_feature::tension) != 0 && s.params.fixed_sheaves;
+  return fixed ? cvt::mbd::SheaveMode::fixed : cvt::mbd::SheaveMode::clamped;
+}
+
+double whole_wrap_slip(double lo, double hi) {
+  if (!(lo <= hi)) return std::nan("");  // no part in the wrap (NaN)
+  if (lo > 0.0) return lo;
+  if (hi < 0.0) return hi;
+  return 0.0;
+}
+
+std::optional<cvt::mbd::MbdParams> reference_params(const cvt::Scene& s, SheaveChoice choice, std::string& why_not) {
+  const cvt::mbd::SheaveMode sheaves = reference_sheaves(s, choice);
   const cvt::RomParams& rp = s.params;
   const cvt::RomInitial& in = s.initial;
   if (rp.hold_driver_speed || rp.hold_driven_speed) {
@@ -141,7 +165,7 @@ std::string reference_key(const cvt::mbd::MbdParams& p, const cvt::mbd::RunOptio
   std::ostringstream k;
   k.precision(17);
   // The cache's format (its CSV columns) is part of the key too.
-  k << "cvtplant multibody reference v" << cvt::mbd::kReferenceVersion << ", cache format 2\n";
+  k << "cvtplant multibody reference v" << cvt::mbd::kReferenceVersion << ", cache format 3\n";
   k << "beta0 " << p.beta0_rad << " C " << p.center_distance_m << " m " << p.link_mass_kg << " J " << p.J1_kgm2 << ' '
     << p.J2_kgm2 << " L " << p.link_length_m << " Kb " << p.bolt_stiffness_N_m << " lb " << p.bolt_length_m << " k "
     << p.joint_stiffness_N_m << " p " << p.joint_damping_Ns_m << " r " << p.r1_m << ' ' << p.r2_m << "\n";
@@ -194,24 +218,25 @@ std::string read_all(const std::string& path) {
 }
 
 // The cache's CSV: t, omega1, omega2, F_ax1, driver torque, driver slip,
-// sheave openings.
+// the whole driver wrap's slip, sheave openings.
 bool read_series(const std::string& path, ReferenceRun& out) {
   std::FILE* f = std::fopen(path.c_str(), "r");
   if (f == nullptr) return false;
   char line[512];
   bool ok = std::fgets(line, sizeof line, f) != nullptr;  // header
-  double v[8];
+  double v[9];
   Series& s = out.series;
-  while (ok && std::fscanf(f, "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &v[6],
-                           &v[7]) == 8) {
+  while (ok && std::fscanf(f, "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &v[6],
+                           &v[7], &v[8]) == 9) {
     s.t_s.push_back(v[0]);
     s.omega1_rad_s.push_back(v[1]);
     s.omega2_rad_s.push_back(v[2]);
     s.F_ax1_N.push_back(v[3]);
     s.torque_driver_Nm.push_back(v[4]);
     s.slip1_m_s.push_back(v[5]);
-    out.sheave1_m.push_back(v[6]);
-    out.sheave2_m.push_back(v[7]);
+    s.wrap_slip_m_s.push_back(v[6]);
+    out.sheave1_m.push_back(v[7]);
+    out.sheave2_m.push_back(v[8]);
   }
   std::fclose(f);
   return ok && s.size() > 0;
@@ -221,11 +246,11 @@ void write_series(const std::string& path, const ReferenceRun& r) {
   std::FILE* f = std::fopen(path.c_str(), "w");
   if (f == nullptr) throw UsageError{"cannot write " + path};
   const Series& s = r.series;
-  std::fprintf(f, "t_s,omega1_rad_s,omega2_rad_s,F_ax1_N,torque_driver_Nm,slip1_m_s,sheave1_m,sheave2_m\n");
+  std::fprintf(f, "t_s,omega1_rad_s,omega2_rad_s,F_ax1_N,torque_driver_Nm,slip1_m_s,wrap_slip1_m_s,sheave1_m,sheave2_m\n");
   for (std::size_t i = 0; i < s.size(); ++i)
-    std::fprintf(f, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", s.t_s[i], s.omega1_rad_s[i],
-                 s.omega2_rad_s[i], s.F_ax1_N[i], s.torque_driver_Nm[i], s.slip1_m_s[i], r.sheave1_m[i],
-                 r.sheave2_m[i]);
+    std::fprintf(f, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", s.t_s[i], s.omega1_rad_s[i],
+                 s.omega2_rad_s[i], s.F_ax1_N[i], s.torque_driver_Nm[i], s.slip1_m_s[i], s.wrap_slip_m_s[i],
+                 r.sheave1_m[i], r.sheave2_m[i]);
   if (std::fclose(f) != 0) throw UsageError{"cannot write " + path};
 }
 
@@ -256,6 +281,7 @@ ReferenceRun reference_run(const cvt::mbd::MbdParams& p, const cvt::mbd::RunOpti
     // chain takes off the driver is its negative (docs/mbd.md#equations-of-motion).
     out.series.torque_driver_Nm.push_back(-s.chain_torque_Nm[0]);
     out.series.slip1_m_s.push_back(s.slip_m_s[0]);
+    out.series.wrap_slip_m_s.push_back(whole_wrap_slip(s.slip_min_m_s[0], s.slip_max_m_s[0]));
     out.sheave1_m.push_back(s.sheave_opening_m[0]);
     out.sheave2_m.push_back(s.sheave_opening_m[1]);
   };
@@ -317,8 +343,11 @@ Series plant_run(const cvt::Scene& s, double sample_s) {
     out.F_ax1_N.push_back(o.clamp_force_N);
     out.torque_driver_Nm.push_back(o.torque_transmitted_Nm);
     // v_rel is the lump's speed over the sheave's; the driver's slip is the
-    // sheave's over the chain's, the mean over the two lumps.
+    // sheave's over the chain's: the mean over the two lumps, and the slip
+    // both lumps share (the whole wrap's).
     out.slip1_m_s.push_back(-0.5 * (o.v_rel1_m_s + o.v_rel2_m_s));
+    out.wrap_slip_m_s.push_back(
+        whole_wrap_slip(std::min(-o.v_rel1_m_s, -o.v_rel2_m_s), std::max(-o.v_rel1_m_s, -o.v_rel2_m_s)));
     fault_t = t;
     return true;
   };
@@ -369,9 +398,10 @@ double peak_to_peak_from(const std::vector<double>& v, std::size_t from) {
   return hi >= lo ? hi - lo : std::nan("");
 }
 
-double first_above(const Series& s, double threshold) {
+// The first sample at which the whole driver wrap slides faster than threshold.
+double first_gross_slip(const Series& s, double threshold) {
   for (std::size_t i = 0; i < s.size(); ++i)
-    if (std::fabs(s.slip1_m_s[i]) > threshold) return s.t_s[i];
+    if (std::fabs(s.wrap_slip_m_s[i]) > threshold) return s.t_s[i];
   return -1.0;
 }
 
@@ -424,8 +454,8 @@ Comparison compare(const Series& plant_all, const Series& ref_all, std::size_t n
   row("driver slip", "m/s", plant.slip1_m_s, ref.slip1_m_s, from);
   c.ripple_plant_N = peak_to_peak_from(plant.F_ax1_N, from);
   c.ripple_reference_N = peak_to_peak_from(ref.F_ax1_N, from);
-  c.gross_slip_plant_s = first_above(plant, kGrossSlip_m_s);
-  c.gross_slip_reference_s = first_above(ref, kGrossSlip_m_s);
+  c.gross_slip_plant_s = first_gross_slip(plant, kGrossSlip_m_s);
+  c.gross_slip_reference_s = first_gross_slip(ref, kGrossSlip_m_s);
   return c;
 }
 

@@ -354,32 +354,34 @@ class CvtRom {
     return T(0);
   }
 
-  // Friction of both lumps at a state, value and slope (non-wedging plants):
-  // evaluated once per state and shared by the right-hand side, the Jacobian
-  // and the power terms, since the exponentials and the atan are most of a
-  // frame on a Cortex-M (docs/rom.md#cost).
+  // Friction of both lumps at a state, value and slope (plants without
+  // wedging): evaluated once per state and shared by the right-hand side, the
+  // Jacobian and the power terms, since the exponentials and the atan are most
+  // of a frame on a Cortex-M (docs/rom.md#cost).
   // With the tension feature it also carries the chain's tension state.
   // With chordal action it carries cos and sin of the ripple's link phase.
-  struct Contact : RomContactTension<T, L::kTension>, RomContactRipple<T, L::kPolygon> {
+  struct FixedRatioContact : RomContactTension<T, L::kTension>, RomContactRipple<T, L::kPolygon> {
     T r1e{};             // effective driver radius [m]
     T v_rel1{}, v_rel2{};  // slip speeds [m/s]
     FrictionEval<T> lump1{}, lump2{};
   };
+  // A wedging lump's contact forces and their partial derivatives with
+  // respect to (v_t, g_r, N0) (lump_contact_partials, docs/rom.md#wedging-jacobian).
+  struct LumpPartials {
+    T F{}, Fr{};
+    T dF[3]{}, dFr[3]{};
+  };
+  // The same sharing with wedging: each lump's tangential slip and its contact
+  // forces with their partials, what the Jacobian, the right-hand side and the
+  // power terms at the state need (docs/rom.md#cost).
+  struct WedgeLumpContact : RomContactRipple<T, L::kPolygon> {
+    T v_t1{}, v_t2{};  // tangential slip speeds [m/s]
+    LumpPartials lump1{}, lump2{};
+  };
+  using Contact = std::conditional_t<L::kWedge, WedgeLumpContact, FixedRatioContact>;
+
   Contact contact(const State& x) const {
-    static_assert(!L::kWedge, "wedging plants evaluate the contact inside derivative() (docs/rom.md#wedging)");
     Contact c;
-    c.r1e = driver_radius(x);
-    const T v1 = c.r1e * x(L::kW1);
-    const T vc = c_.r2 * x(L::kW2);
-    T vc1 = vc;  // the chain's speed at the entry lump: faster by the creep (docs/rom.md#tension)
-    if constexpr (L::kTension) {
-      c.tension = chain_tension(x, vc);
-      vc1 = vc + c.tension.creep;
-    }
-    c.v_rel1 = slip_velocity<T>(vc1, x(L::kV1), v1);
-    c.v_rel2 = slip_velocity<T>(vc, x(L::kV2), v1);
-    c.lump1 = friction_characteristic_and_slope(c_.friction, c.v_rel1);
-    c.lump2 = friction_characteristic_and_slope(c_.friction, c.v_rel2);
     if constexpr (L::kPolygon) {
       // With the ripple off (A = 0) both stay 0: no term reads them then.
       if (rippled()) {
@@ -387,6 +389,32 @@ class CvtRom {
         c.ripple_cos = cos(theta);
         c.ripple_sin = sin(theta);
       }
+    }
+    if constexpr (L::kWedge) {
+      const T r1e = driver_radius(x);
+      const T v1 = r1e * x(L::kW1);
+      const T vc = pitch_radius2(x) * x(L::kW2);
+      const T fax = clamp_force(x);
+      const T rhod = x(L::kRhoDot);
+      c.v_t1 = slip_velocity<T>(vc, x(L::kV1), v1);
+      c.v_t2 = slip_velocity<T>(vc, x(L::kV2), v1);
+      // The lumps press with the rippled force (docs/rom.md#link-ripple).
+      const T fl = lumps_axial_force(fax, contact_ripple_cos(c));
+      c.lump1 = lump_contact_partials(c.v_t1, rhod * c_.inv_cos1, normal_force(fl, c_.load1), c_.tan1);
+      c.lump2 = lump_contact_partials(c.v_t2, rhod * c_.inv_cos2, normal_force(fl, c_.load2), c_.tan2);
+    } else {
+      c.r1e = driver_radius(x);
+      const T v1 = c.r1e * x(L::kW1);
+      const T vc = c_.r2 * x(L::kW2);
+      T vc1 = vc;  // the chain's speed at the entry lump: faster by the creep (docs/rom.md#tension)
+      if constexpr (L::kTension) {
+        c.tension = chain_tension(x, vc);
+        vc1 = vc + c.tension.creep;
+      }
+      c.v_rel1 = slip_velocity<T>(vc1, x(L::kV1), v1);
+      c.v_rel2 = slip_velocity<T>(vc, x(L::kV2), v1);
+      c.lump1 = friction_characteristic_and_slope(c_.friction, c.v_rel1);
+      c.lump2 = friction_characteristic_and_slope(c_.friction, c.v_rel2);
     }
     return c;
   }
@@ -424,11 +452,17 @@ class CvtRom {
       }
     }
   }
-  // The same, with the friction already evaluated at x (c = contact(x)).
+  // The same, with the friction already evaluated at x (c = contact(x)); bit
+  // for bit derivative(x, dxdt), the fused friction values being the separate ones.
   void derivative(const State& x, const Contact& c, State& dxdt) const {
-    if constexpr (L::kTension)
+    if constexpr (L::kWedge) {
+      const WedgeContact<T> w{c.lump1.F, c.lump2.F, c.lump1.Fr, c.lump2.Fr};
+      derivative_wedge_given(x, driver_radius(x), pitch_radius2(x), clamp_force(x), w, dxdt);
+    } else if constexpr (L::kTension) {
       derivative_given_tension(x, c.r1e, c.lump1.phi, c.lump2.phi, c.tension, contact_ripple_cos(c), dxdt);
-    else derivative_given(x, c.r1e, c.lump1.phi, c.lump2.phi, contact_ripple_cos(c), dxdt);
+    } else {
+      derivative_given(x, c.r1e, c.lump1.phi, c.lump2.phi, contact_ripple_cos(c), dxdt);
+    }
   }
 
   // The axial force at x (c = contact(x)) before the link-passing ripple:
@@ -459,24 +493,7 @@ class CvtRom {
   // increment, and leaving them out keeps the LU pivots those of seed Eq. 9.
   // With wedging, the chain rule through the per-lump contact partials
   // (docs/rom.md#wedging-jacobian).
-  void jacobian(const State& x, Jacobian& J) const {
-    if constexpr (L::kWedge) {
-      jacobian_wedge(x, J);
-    } else {
-      jacobian(x, contact(x), J, false);
-    }
-  }
-
-  // Wedging: the Jacobian and the right-hand side at x from one evaluation
-  // of the contact (the exponentials, atan and square roots of the friction
-  // are most of a right-hand side; docs/rom.md#cost). dxdt is bit for bit
-  // derivative(x, dxdt): the fused friction value equals the separate one.
-  void jacobian_and_derivative(const State& x, Jacobian& J, State& dxdt) const {
-    static_assert(L::kWedge, "plants without wedging share their contact through contact(x)");
-    WedgeContact<T> c;
-    jacobian_wedge(x, J, &c);
-    derivative_wedge_given(x, driver_radius(x), pitch_radius2(x), clamp_force(x), c, dxdt);
-  }
+  void jacobian(const State& x, Jacobian& J) const { jacobian(x, contact(x), J, false); }
 
   // The Jacobian from the friction already evaluated at x. With
   // `w_slope_floor` it is the matrix W of the real-time step instead
@@ -485,10 +502,32 @@ class CvtRom {
   // the layer's edge. Seed case 2 has mu(0) = 0, so at exact rest the true
   // slope is zero and a step would not see the stick stiffness that appears
   // within it. ROS2 is a W-method (order 2 for any W), so this changes the
-  // step's error constant near stick, not its order.
+  // step's error constant near stick, not its order. With wedging the floor
+  // acts through the tangential slip speed (add_w_slope_floor).
   void jacobian(const State& x, const Contact& c, Jacobian& J, bool w_slope_floor) const {
-    static_assert(!L::kWedge, "wedging plants use jacobian(x, J) (docs/rom.md#wedging)");
     J.setZero();
+    jacobian_entries(x, c, J, w_slope_floor);
+  }
+
+  // jacobian(x, c, J, w_slope_floor) without zeroing J first: writes the rows
+  // of the core states (w1, w2, xd1, xd2; with wedging also deltadot and
+  // rhodot) whole and the entries of the other rows that can be nonzero, and
+  // leaves every other entry of J as it was. These are the entries
+  // RomWSolver::factor reads (docs/rom.md#structured-solve), so the step
+  // passes a J it never zeroes: zeroing the 81 entries of the axial plant's J
+  // each step was 170 instructions of a frame on the M4F (docs/rom.md#cost).
+  void jacobian_entries(const State& x, const Contact& c, Jacobian& J, bool w_slope_floor) const {
+    if constexpr (L::kWedge) {
+      jacobian_wedge(x, c, J);
+      if (w_slope_floor) add_w_slope_floor(x, J);
+    } else {
+      jacobian_fixed_ratio(x, c, J, w_slope_floor);
+    }
+  }
+
+ private:
+  // jacobian_entries without wedging (docs/rom.md#jacobian).
+  void jacobian_fixed_ratio(const State& x, const Contact& c, Jacobian& J, bool w_slope_floor) const {
     const T w1 = x(L::kW1), w2 = x(L::kW2);
     const T r1e = c.r1e;
     const T fax = axial_force(x, c);
@@ -521,9 +560,9 @@ class CvtRom {
       rw2[L::kV1] = per_tau(c_.r2 * c_.c1 * c_.inv_J2);
       rw2[L::kX2] = per_tau(c_.r2 * c_.k1 * c_.inv_J2);
       rw2[L::kV2] = per_tau(c_.r2 * c_.c1 * c_.inv_J2);
-      #pragma GCC unroll 16
-      for (int j = 0; j < kStates; ++j) J(L::kW2, j) = rw2[j];
     }
+    #pragma GCC unroll 16
+    for (int j = 0; j < kStates; ++j) J(L::kW2, j) = rw2[j];
     // Partials of F_i w.r.t. the states, columns w1, w2, xd_i, delta, psi,
     // per time unit like g_i.
     T dF1[kStates], dF2[kStates];
@@ -568,31 +607,38 @@ class CvtRom {
     if (!free1) dF1[L::kW1] = dF2[L::kW1] = T(0);
     if (!free2) dF1[L::kW2] = dF2[L::kW2] = T(0);
 
+    // The constants in locals: J's entries are T too, and every store to J
+    // would otherwise make the compiler read a constant of the plant again.
+    const T inv_J1 = c_.inv_J1, r2 = c_.r2;
     if (free1) {
       #pragma GCC unroll 16
-      for (int j = 0; j < kStates; ++j) J(L::kW1, j) = -r1e * (dF1[j] + dF2[j]) * c_.inv_J1;
+      for (int j = 0; j < kStates; ++j) J(L::kW1, j) = -r1e * (dF1[j] + dF2[j]) * inv_J1;
       if constexpr (L::kPolygon) {
         const T F1 = lump_friction(c.lump1.phi, N1);
         const T F2 = lump_friction(c.lump2.phi, N2);
         // d(r1e)/dpsi = -r1 sin(psi)
-        J(L::kW1, L::kPsi) += per_tau(c_.r1 * sin_psi * (F1 + F2) * c_.inv_J1);
+        J(L::kW1, L::kPsi) += per_tau(c_.r1 * sin_psi * (F1 + F2) * inv_J1);
       }
+    } else {
+      #pragma GCC unroll 16
+      for (int j = 0; j < kStates; ++j) J(L::kW1, j) = T(0);
     }
     J(L::kX1, L::kV1) = T(1);
     J(L::kX2, L::kV2) = T(1);
     #pragma GCC unroll 16
     for (int j = 0; j < kStates; ++j) {
-      J(L::kV1, j) = dF1[j] * im - c_.r2 * rw2[j];
-      J(L::kV2, j) = dF2[j] * im - c_.r2 * rw2[j];
+      J(L::kV1, j) = dF1[j] * im - r2 * rw2[j];
+      J(L::kV2, j) = dF2[j] * im - r2 * rw2[j];
     }
-    J(L::kV1, L::kX1) += per_tau(-(c_.k1 + c_.k2) * im);
-    J(L::kV1, L::kX2) += per_tau(c_.k2 * im);
-    J(L::kV1, L::kV1) += per_tau(-(c_.c1 + c_.c2) * im);
-    J(L::kV1, L::kV2) += per_tau(c_.c2 * im);
-    J(L::kV2, L::kX1) += per_tau(c_.k2 * im);
-    J(L::kV2, L::kX2) += per_tau(-(c_.k1 + c_.k2) * im);
-    J(L::kV2, L::kV1) += per_tau(c_.c2 * im);
-    J(L::kV2, L::kV2) += per_tau(-(c_.c1 + c_.c2) * im);
+    const T k1 = c_.k1, k2 = c_.k2, c1 = c_.c1, c2 = c_.c2;
+    J(L::kV1, L::kX1) += per_tau(-(k1 + k2) * im);
+    J(L::kV1, L::kX2) += per_tau(k2 * im);
+    J(L::kV1, L::kV1) += per_tau(-(c1 + c2) * im);
+    J(L::kV1, L::kV2) += per_tau(c2 * im);
+    J(L::kV2, L::kX1) += per_tau(k2 * im);
+    J(L::kV2, L::kX2) += per_tau(-(k1 + k2) * im);
+    J(L::kV2, L::kV1) += per_tau(c2 * im);
+    J(L::kV2, L::kV2) += per_tau(-(c1 + c2) * im);
     if constexpr (L::kAxial) {
       J(L::kFh, L::kFh) = -c_.inv_tau_h;
       J(L::kDelta, L::kDeltaDot) = T(1);
@@ -649,6 +695,7 @@ class CvtRom {
     return r;
   }
 
+ public:
   // docs/rom.md#tension-jacobian: the partials of F_1 through the entry
   // lump's creep speed, and of both lumps' friction through the chain's axial
   // force, added to dF_i (per time unit like g1 = dF_1/dv_rel,1). dT = F_s1 +
@@ -849,12 +896,6 @@ class CvtRom {
     Fr = -q * gr * N;
   }
 
-  // lump_contact's forces and their partial derivatives with respect to
-  // (vt, gr, N0) (docs/rom.md#wedging-jacobian).
-  struct LumpPartials {
-    T F{}, Fr{};
-    T dF[3]{}, dFr[3]{};
-  };
   LumpPartials lump_contact_partials(const T& vt, const T& gr, const T& N0, const T& tb) const {
     const T s2 = vt * vt + gr * gr;
     T q(c_.q0), dq_vt(0), dq_gr(0);
@@ -884,12 +925,12 @@ class CvtRom {
   }
 
   // The Jacobian of derivative_wedge (docs/rom.md#wedging-jacobian): the
-  // chain rule through the radii, the slip speeds, the bolt force and
-  // lump_contact_partials. Held pulleys get zero rows, like the dual-number
-  // Jacobian of the same right-hand side (the test compares the two).
-  void jacobian_wedge(const State& x, Jacobian& J, WedgeContact<T>* contact = nullptr) const {
+  // chain rule through the radii, the slip speeds, the bolt force and the
+  // contact's partials (c = contact(x), lump_contact_partials). Held pulleys
+  // get zero rows, like the dual-number Jacobian of the same right-hand side
+  // (the test compares the two). Writes the entries jacobian_entries names.
+  void jacobian_wedge(const State& x, const Contact& c, Jacobian& J) const {
     constexpr int N = kStates;
-    J.setZero();
     const T w1 = x(L::kW1), w2 = x(L::kW2), rho = x(L::kRho), rhod = x(L::kRhoDot);
     const T r1p = pitch_radius1(x);
     const T r1e = driver_radius(x);
@@ -901,19 +942,13 @@ class CvtRom {
     const T r2 = pitch_radius2(x);
     const T kap = ratio_slope(rho);  // -dr2/drho
     const T dkap = ratio_slope_derivative(rho);
-    const T v1 = r1e * w1;
-    const T vc = r2 * w2;
-    const T fax = clamp_force(x);
-    // The lumps' axial force with the link-passing ripple and its factor
-    // 1 + A cos(theta) (docs/rom.md#link-ripple).
-    T fl = fax, rip(1), dfl_psi(0);
+    // The lumps' axial force carries the link-passing ripple's factor
+    // 1 + A cos(theta) and its phase partial (docs/rom.md#link-ripple).
+    T rip(1), dfl_psi(0);
     if constexpr (L::kPolygon) {
       if (rippled()) {
-        const T theta = ripple_angle(x(L::kPsi));
-        const T ct = cos(theta);
-        fl = lumps_axial_force(fax, ct);
-        rip = T(1) + c_.rip_A * ct;
-        dfl_psi = -(fax * (c_.rip_A * c_.rip_k)) * sin(theta);
+        rip = T(1) + c_.rip_A * c.ripple_cos;
+        dfl_psi = -(clamp_force(x) * (c_.rip_A * c_.rip_k)) * c.ripple_sin;
       }
     }
     // dF_ax/dx: F_ax = K_ax (delta - 2 tan(beta0) rho) while compressed.
@@ -941,16 +976,10 @@ class CvtRom {
     const int v_col[2] = {L::kV1, L::kV2};
     const T inv_cos[2] = {c_.inv_cos1, c_.inv_cos2};
     const T load[2] = {c_.load1, c_.load2};
-    const T tanb[2] = {c_.tan1, c_.tan2};
     #pragma GCC unroll 16
     for (int i = 0; i < 2; ++i) {
-      const T vt = slip_velocity<T>(vc, x(v_col[i]), v1);
-      const LumpPartials P = lump_contact_partials(vt, rhod * inv_cos[i], normal_force(fl, load[i]), tanb[i]);
+      const LumpPartials& P = i == 0 ? c.lump1 : c.lump2;
       Fsum += P.F;
-      if (contact != nullptr) {
-        (i == 0 ? contact->F1 : contact->F2) = P.F;
-        (i == 0 ? contact->Fr1 : contact->Fr2) = P.Fr;
-      }
       #pragma GCC unroll 16
       for (int j = 0; j < N; ++j) {
         T dn = load[i] * dfax[j];
@@ -965,10 +994,14 @@ class CvtRom {
       dF[i][L::kRhoDot] += P.dF[1] * inv_cos[i];
       dR[i][L::kRhoDot] += P.dFr[1] * inv_cos[i];
     }
-    // Driver row: J1 w1' = tau_in - r1e (F1 + F2).
-    if (!c_.hold1)
-      #pragma GCC unroll 16
-      for (int j = 0; j < N; ++j) J(L::kW1, j) = -(r1e * (dF[0][j] + dF[1][j]) + Fsum * dr1e[j]) * c_.inv_J1;
+    // The constants in locals: every store to J (entries of type T) would
+    // otherwise make the compiler read them from the plant again.
+    const T inv_J1 = c_.inv_J1, inv_J2 = c_.inv_J2, inv_m = c_.inv_m, inv_ms = c_.inv_ms, inv_mr = c_.inv_mr;
+    const T k1 = c_.k1, k2 = c_.k2, c1 = c_.c1, c2 = c_.c2;
+    // Driver row: J1 w1' = tau_in - r1e (F1 + F2); a held pulley's row is zero.
+    #pragma GCC unroll 16
+    for (int j = 0; j < N; ++j)
+      J(L::kW1, j) = c_.hold1 ? T(0) : -(r1e * (dF[0][j] + dF[1][j]) + Fsum * dr1e[j]) * inv_J1;
     // Driven row: J2 w2' = r2 (strand1 + strand2) - tau_load.
     T dw2[N];
     #pragma GCC unroll 16
@@ -979,15 +1012,15 @@ class CvtRom {
     const T strand1 = st.s1, strand2 = st.s2;
     const T g = c_.wrap_g;
     if (!c_.hold2) {
-      w2dot = (strand_torque(r2, strand1, strand2) - load_torque(w2)) * c_.inv_J2;
-      dw2[L::kX1] = dw2[L::kX2] = r2 * c_.k1 * c_.inv_J2;
-      dw2[L::kV1] = dw2[L::kV2] = r2 * c_.c1 * c_.inv_J2;
-      dw2[L::kW2] = -load_torque_slope(w2) * c_.inv_J2;
-      dw2[L::kRho] = (-kap * (strand1 + strand2) + r2 * T(2) * g * c_.k1) * c_.inv_J2;
-      dw2[L::kRhoDot] = r2 * T(2) * g * c_.c1 * c_.inv_J2;
-      #pragma GCC unroll 16
-      for (int j = 0; j < N; ++j) J(L::kW2, j) = dw2[j];
+      w2dot = (strand_torque(r2, strand1, strand2) - load_torque(w2)) * inv_J2;
+      dw2[L::kX1] = dw2[L::kX2] = r2 * k1 * inv_J2;
+      dw2[L::kV1] = dw2[L::kV2] = r2 * c1 * inv_J2;
+      dw2[L::kW2] = -load_torque_slope(w2) * inv_J2;
+      dw2[L::kRho] = (-kap * (strand1 + strand2) + r2 * T(2) * g * k1) * inv_J2;
+      dw2[L::kRhoDot] = r2 * T(2) * g * c1 * inv_J2;
     }
+    #pragma GCC unroll 16
+    for (int j = 0; j < N; ++j) J(L::kW2, j) = dw2[j];
     // Chain frame acceleration r2 w2' - kappa rhodot w2.
     T dca[N];
     #pragma GCC unroll 16
@@ -998,47 +1031,48 @@ class CvtRom {
     // Lump rows: m (xd_i' + chain) = F_i - strand_i -+ mid.
     #pragma GCC unroll 16
     for (int j = 0; j < N; ++j) {
-      J(L::kV1, j) = dF[0][j] * c_.inv_m - dca[j];
-      J(L::kV2, j) = dF[1][j] * c_.inv_m - dca[j];
+      J(L::kV1, j) = dF[0][j] * inv_m - dca[j];
+      J(L::kV2, j) = dF[1][j] * inv_m - dca[j];
     }
-    J(L::kV1, L::kX1) += -(c_.k1 + c_.k2) * c_.inv_m;
-    J(L::kV1, L::kX2) += c_.k2 * c_.inv_m;
-    J(L::kV1, L::kV1) += -(c_.c1 + c_.c2) * c_.inv_m;
-    J(L::kV1, L::kV2) += c_.c2 * c_.inv_m;
-    J(L::kV2, L::kX1) += c_.k2 * c_.inv_m;
-    J(L::kV2, L::kX2) += -(c_.k1 + c_.k2) * c_.inv_m;
-    J(L::kV2, L::kV1) += c_.c2 * c_.inv_m;
-    J(L::kV2, L::kV2) += -(c_.c1 + c_.c2) * c_.inv_m;
+    J(L::kV1, L::kX1) += -(k1 + k2) * inv_m;
+    J(L::kV1, L::kX2) += k2 * inv_m;
+    J(L::kV1, L::kV1) += -(c1 + c2) * inv_m;
+    J(L::kV1, L::kV2) += c2 * inv_m;
+    J(L::kV2, L::kX1) += k2 * inv_m;
+    J(L::kV2, L::kX2) += -(k1 + k2) * inv_m;
+    J(L::kV2, L::kV1) += c2 * inv_m;
+    J(L::kV2, L::kV2) += -(c1 + c2) * inv_m;
     // Each lump's strand also stretches with g rho.
-    J(L::kV1, L::kRho) += -g * c_.k1 * c_.inv_m;
-    J(L::kV2, L::kRho) += -g * c_.k1 * c_.inv_m;
-    J(L::kV1, L::kRhoDot) += -g * c_.c1 * c_.inv_m;
-    J(L::kV2, L::kRhoDot) += -g * c_.c1 * c_.inv_m;
+    J(L::kV1, L::kRho) += -g * k1 * inv_m;
+    J(L::kV2, L::kRho) += -g * k1 * inv_m;
+    J(L::kV1, L::kRhoDot) += -g * c1 * inv_m;
+    J(L::kV2, L::kRhoDot) += -g * c1 * inv_m;
     J(L::kX1, L::kV1) = T(1);
     J(L::kX2, L::kV2) = T(1);
     // Axial rows.
     J(L::kFh, L::kFh) = -c_.inv_tau_h;
     J(L::kDelta, L::kDeltaDot) = T(1);
     #pragma GCC unroll 16
-    for (int j = 0; j < N; ++j) J(L::kDeltaDot, j) = -dfax[j] * c_.inv_ms;
-    J(L::kDeltaDot, L::kFh) += c_.inv_ms;
-    J(L::kDeltaDot, L::kDeltaDot) += -c_.cs * c_.inv_ms;
+    for (int j = 0; j < N; ++j) J(L::kDeltaDot, j) = -dfax[j] * inv_ms;
+    J(L::kDeltaDot, L::kFh) += inv_ms;
+    J(L::kDeltaDot, L::kDeltaDot) += -c_.cs * inv_ms;
     // Radial rows: m_r rho'' = 2 tan(beta0) F_ax + sum Fr_i / cos(beta_i)
     //   - kappa 2 tan(beta0) F_ax2 - c_r rho' - F_stop - g (F_s1 + F_s2).
     J(L::kRho, L::kRhoDot) = T(1);
+    const T two_tan_b0 = c_.two_tan_b0, inv_cos1 = c_.inv_cos1, inv_cos2 = c_.inv_cos2;
     #pragma GCC unroll 16
     for (int j = 0; j < N; ++j)
-      J(L::kRhoDot, j) = (c_.two_tan_b0 * dfax[j] + dR[0][j] * c_.inv_cos1 + dR[1][j] * c_.inv_cos2) * c_.inv_mr;
+      J(L::kRhoDot, j) = (two_tan_b0 * dfax[j] + dR[0][j] * inv_cos1 + dR[1][j] * inv_cos2) * inv_mr;
     const T stop_slope = stop_penetration(rho) != T(0) ? c_.k_stop : T(0);
-    J(L::kRhoDot, L::kRho) += (-dkap * c_.driven_force - stop_slope) * c_.inv_mr;
-    J(L::kRhoDot, L::kRhoDot) += -c_.cr * c_.inv_mr;
+    J(L::kRhoDot, L::kRho) += (-dkap * c_.driven_force - stop_slope) * inv_mr;
+    J(L::kRhoDot, L::kRhoDot) += -c_.cr * inv_mr;
     // - g (F_s1 + F_s2), the wrap-tension pull (docs/rom.md#wrap-tension).
-    J(L::kRhoDot, L::kX1) += -g * c_.k1 * c_.inv_mr;
-    J(L::kRhoDot, L::kX2) += -g * c_.k1 * c_.inv_mr;
-    J(L::kRhoDot, L::kV1) += -g * c_.c1 * c_.inv_mr;
-    J(L::kRhoDot, L::kV2) += -g * c_.c1 * c_.inv_mr;
-    J(L::kRhoDot, L::kRho) += -T(2) * g * g * c_.k1 * c_.inv_mr;
-    J(L::kRhoDot, L::kRhoDot) += -T(2) * g * g * c_.c1 * c_.inv_mr;
+    J(L::kRhoDot, L::kX1) += -g * k1 * inv_mr;
+    J(L::kRhoDot, L::kX2) += -g * k1 * inv_mr;
+    J(L::kRhoDot, L::kV1) += -g * c1 * inv_mr;
+    J(L::kRhoDot, L::kV2) += -g * c1 * inv_mr;
+    J(L::kRhoDot, L::kRho) += -T(2) * g * g * k1 * inv_mr;
+    J(L::kRhoDot, L::kRhoDot) += -T(2) * g * g * c1 * inv_mr;
     if constexpr (L::kPolygon) J(L::kPsi, L::kW1) = T(1);
   }
 

@@ -5,7 +5,6 @@
 #include <type_traits>
 
 #include "cvtplant/plant/rom_formulas.hpp"
-#include "cvtplant/plant/rom_outputs.hpp"
 
 namespace cvt {
 
@@ -157,11 +156,38 @@ inline RomPower<RomAcc<typename Plant::Scalar>> rom_power_given(
   return pw;
 }
 
-// The power terms with the friction already evaluated at xs (contact =
-// plant.contact(xs)); forces and torques as rom_outputs() computes them.
+// The power terms of a wedging plant with its contact at xs (rom_power).
 template <class Plant>
-inline RomPower<RomAcc<typename Plant::Scalar>> rom_power(const Plant& plant, const typename Plant::State& xs,
-                                                          const typename Plant::Contact& contact) {
+inline RomPower<RomAcc<typename Plant::Scalar>> rom_power_wedging(const Plant& plant,
+                                                                  const typename Plant::State& xs,
+                                                                  const typename Plant::Contact& contact) {
+  using T = typename Plant::Scalar;
+  using L = typename Plant::Layout;
+  using Acc = RomAcc<T>;
+  const auto& c = plant.constants();
+  const T F1 = contact.lump1.F, F2 = contact.lump2.F;
+  const T tau_in = c.hold1 ? friction_torque(plant.driver_radius(xs), F1, F2) : plant.inputs.tau_in_Nm;
+  T tau_load;
+  if (c.hold2) {
+    const auto st = plant.strands(xs);
+    tau_load = strand_torque(plant.pitch_radius2(xs), st.s1, st.s2);
+  } else {
+    tau_load = plant.load_torque(xs(L::kW2));
+  }
+  RomPower<Acc> pw = rom_power_given(plant, xs, tau_in, tau_load, F1, F2, contact.v_t1, contact.v_t2);
+  // Radial slip along the flank is rhodot / cos(beta_i).
+  const Acc rd = rom_to_acc(xs(L::kRhoDot));
+  pw.friction_loss_W -= rom_to_acc(contact.lump1.Fr) * rd * rom_to_acc(c.inv_cos1) +
+                        rom_to_acc(contact.lump2.Fr) * rd * rom_to_acc(c.inv_cos2);
+  pw.damping_loss_W += c.acc.cr * rd * rd;
+  return pw;
+}
+
+// The power terms of a plant without wedging with its contact at xs (rom_power).
+template <class Plant>
+inline RomPower<RomAcc<typename Plant::Scalar>> rom_power_fixed_ratio(const Plant& plant,
+                                                                      const typename Plant::State& xs,
+                                                                      const typename Plant::Contact& contact) {
   using T = typename Plant::Scalar;
   using L = typename Plant::Layout;
   const auto& c = plant.constants();
@@ -187,27 +213,22 @@ inline RomPower<RomAcc<typename Plant::Scalar>> rom_power(const Plant& plant, co
   }
 }
 
+// The power terms with the contact already evaluated at xs (contact =
+// plant.contact(xs)); forces and torques as rom_outputs() computes them, so
+// the terms are bit for bit those of the outputs (the fused friction values
+// being the separate ones).
+template <class Plant>
+inline RomPower<RomAcc<typename Plant::Scalar>> rom_power(const Plant& plant, const typename Plant::State& xs,
+                                                          const typename Plant::Contact& contact) {
+  if constexpr (Plant::Layout::kWedge) return rom_power_wedging(plant, xs, contact);
+  else return rom_power_fixed_ratio(plant, xs, contact);
+}
+
 // The power terms at xs with the plant's current inputs [W].
 template <class Plant>
 inline RomPower<RomAcc<typename Plant::Scalar>> rom_power(const Plant& plant,
                                                           const typename Plant::State& xs) {
-  using T = typename Plant::Scalar;
-  using L = typename Plant::Layout;
-  using Acc = RomAcc<T>;
-  if constexpr (L::kWedge) {
-    const RomOutputs<T> o = rom_outputs(plant, xs);
-    RomPower<Acc> pw = rom_power_given(plant, xs, o.tau_in_Nm, o.tau_load_Nm, o.friction1_N, o.friction2_N,
-                                       o.v_rel1_m_s, o.v_rel2_m_s);
-    // Radial slip along the flank is rhodot / cos(beta_i).
-    const auto& c = plant.constants();
-    const Acc rd = rom_to_acc(xs(L::kRhoDot));
-    pw.friction_loss_W -= rom_to_acc(o.radial_friction1_N) * rd * rom_to_acc(c.inv_cos1) +
-                          rom_to_acc(o.radial_friction2_N) * rd * rom_to_acc(c.inv_cos2);
-    pw.damping_loss_W += c.acc.cr * rd * rd;
-    return pw;
-  } else {
-    return rom_power(plant, xs, plant.contact(xs));
-  }
+  return rom_power(plant, xs, plant.contact(xs));
 }
 
 }  // namespace cvt

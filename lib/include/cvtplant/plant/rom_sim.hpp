@@ -32,11 +32,16 @@ struct RomSimConfig {
   // (docs/rom.md#slope-floor; the wedging plants add it to their full J);
   // no effect on the explicit methods.
   bool w_slope_floor = true;
-  // Wedging: a frame that starts or ends on a radial end stop, or close
-  // enough to reach it within the frame, is taken with this many times the
-  // substeps, so the stop's 2.8 ms ring is resolved only where it can act
-  // (docs/rom.md#end-stop); 1 = never.
+  // Wedging: a frame that starts on a radial end stop, or close enough to
+  // reach it within the frame at its radial speed, is taken with this many
+  // times the substeps, so the stop's 2.8 ms ring is resolved only where it
+  // can act (docs/rom.md#end-stop); 1 = never.
   int stop_substeps = 2;
+  // The refined frame evaluates its Jacobian and W for its first substep
+  // only and its other substeps keep that W (ROS2 keeps its order with any
+  // W), so a frame on the stop costs 1.5 frames, not 2 (docs/rom.md#end-stop);
+  // false evaluates both for every substep, for comparisons.
+  bool stop_keep_w = true;
 };
 
 template <class T, std::uint32_t Features = 0>
@@ -104,6 +109,12 @@ class RomSimulator {
     if (fault_ != RomFault::none) return fault_;
     fault_ = rom_input_fault(u.tau_in_Nm, u.tau_load_Nm, u.clamp_N);
     if (fault_ != RomFault::none) return fault_;
+    // docs/rom.md#tension: without the actuator the clamping input sets the
+    // chain's axial force and with it the creep, which the contact carries; a
+    // new command makes the contact of the frame's start stale.
+    if constexpr (Plant::Layout::kTension && !Plant::Layout::kAxial) {
+      if (!plant_.constants().ten_fixed && !(u.clamp_N == plant_.inputs.clamp_N)) contact_stale_ = true;
+    }
     plant_.inputs = u;
     if (contact_stale_) refresh_contact();
     const State x_prev = x_;
@@ -126,21 +137,9 @@ class RomSimulator {
     RomFault f = RomFault::none;
     if constexpr (Plant::Layout::kWedge) {
       // docs/rom.md#end-stop: a frame that starts near a stop takes the
-      // finer steps at once; one that ends near it is taken again with them.
-      const bool refine = cfg_.stop_substeps > 1;
-      if (refine && near_stop(x_prev)) {
-        f = integrate_stop(n);
-      } else {
-        f = integrate(n, h_, h_acc_);
-        if (refine && f == RomFault::none && near_stop(x_)) {
-          x_ = x_prev;
-          contact_ = contact_prev;
-          carry_ = carry_prev;
-          ledger_ = ledger_prev;
-          ledger_.actuator_J += driven_work_;
-          f = integrate_stop(n);
-        }
-      }
+      // finer steps.
+      if (cfg_.stop_substeps > 1 && near_stop(x_prev)) f = integrate_stop(n);
+      else f = integrate(n, h_, h_acc_);
     } else {
       f = integrate(n, h_, h_acc_);
     }
@@ -192,41 +191,41 @@ class RomSimulator {
   T substep() const { return h_; }
 
  private:
-  static constexpr bool kContact = !Plant::Layout::kWedge;
-  // Friction of the current state (docs/rom.md#cost); empty with wedging.
-  struct NoContact {};
-  using Contact = std::conditional_t<kContact, typename Plant::Contact, NoContact>;
+  // Friction of the current state (docs/rom.md#cost).
+  using Contact = typename Plant::Contact;
   // Rounding remainders of the fixed-point increments (integrate/increment.hpp).
   using Carry = IncrementCarry<T, Plant::kStates>;
 
   void refresh_contact() {
-    if constexpr (kContact) contact_ = plant_.contact(x_);
+    contact_ = plant_.contact(x_);
     contact_stale_ = false;
   }
   // The link phase's rate at the current state (docs/rom.md#link-ripple).
-  T phase_rate() const {
-    if constexpr (kContact) return plant_.phase_rate(x_, contact_);
-    else return x_(Plant::Layout::kW1);
-  }
-  RomPower<Acc> power_now() const {
-    if constexpr (kContact) return plant_.power(x_, contact_);
-    else return plant_.power(x_);
-  }
-  void advance_substep(const T& h) {
-    if constexpr (kContact) {
-      if (cfg_.method == Method::ros2 || cfg_.method == Method::linear_implicit_euler) {
+  T phase_rate() const { return plant_.phase_rate(x_, contact_); }
+  RomPower<Acc> power_now() const { return plant_.power(x_, contact_); }
+  void advance_substep(const T& h, RomWUse use) {
+    if (cfg_.method == Method::ros2 || cfg_.method == Method::linear_implicit_euler) {
+      if constexpr (Plant::Layout::kWedge) {
+        auto step = [&](auto use_c) {
+          rom_step_implicit_with<decltype(use_c)::value>(cfg_.method, plant_, x_, h, contact_, cfg_.w_slope_floor,
+                                                         kept_.J, kept_.w, &carry_);
+        };
+        if (use == RomWUse::kept_w) step(std::integral_constant<RomWUse, RomWUse::kept_w>{});
+        else step(std::integral_constant<RomWUse, RomWUse::fresh>{});
+      } else {
+        (void)use;
         rom_step_implicit(cfg_.method, plant_, x_, h, contact_, cfg_.w_slope_floor, &carry_);
-        return;
       }
+    } else {
+      rom_step(cfg_.method, plant_, x_, h, cfg_.w_slope_floor, &carry_);
     }
-    rom_step(cfg_.method, plant_, x_, h, cfg_.w_slope_floor, &carry_);
   }
 
   // One substep of h, checked (non-finite or saturated state, radial travel).
   // The friction at the new state serves the ledger's power term and the
   // next substep's Jacobian and right-hand side (docs/rom.md#cost).
-  RomFault substep(const T& h) {
-    advance_substep(h);
+  RomFault substep(const T& h, RomWUse use) {
+    advance_substep(h, use);
     plant_.wrap(x_);
     RomFault f = rom_state_fault(x_);
     if (f == RomFault::none && !plant_.radius_in_range(x_)) f = RomFault::radius_out_of_range;
@@ -237,15 +236,17 @@ class RomSimulator {
   // n substeps of h (plant time units; hacc the same in seconds), with the
   // ledger's trapezoid on the power terms at the substep ends when the
   // ledger is on (inputs constant over the frame, docs/rom.md#energy-balance).
-  RomFault integrate(int n, const T& h, const Acc& hacc) {
+  // With `keep_w` the substeps after the first keep its W (RomWUse::kept_w).
+  RomFault integrate(int n, const T& h, const Acc& hacc, bool keep_w = false) {
+    const RomWUse later = keep_w ? RomWUse::kept_w : RomWUse::fresh;
     if (!cfg_.energy_ledger) {
       for (int i = 0; i < n; ++i)
-        if (const RomFault f = substep(h); f != RomFault::none) return f;
+        if (const RomFault f = substep(h, i == 0 ? RomWUse::fresh : later); f != RomFault::none) return f;
       return RomFault::none;
     }
     RomPower<Acc> p0 = power_now();
     for (int i = 0; i < n; ++i) {
-      if (const RomFault f = substep(h); f != RomFault::none) return f;
+      if (const RomFault f = substep(h, i == 0 ? RomWUse::fresh : later); f != RomFault::none) return f;
       const RomPower<Acc> p1 = power_now();
       ledger_.add_trapezoid(p0, p1, hacc * Acc(0.5));
       p0 = p1;
@@ -253,12 +254,12 @@ class RomSimulator {
     return RomFault::none;
   }
 
-  // The frame in n x stop_substeps steps (docs/rom.md#end-stop).
+  // The frame in n x stop_substeps steps of one W (docs/rom.md#end-stop).
   RomFault integrate_stop(int n) {
     const int m = n * cfg_.stop_substeps;
     const double hs = cfg_.frame_s / static_cast<double>(m);
     ++stop_refined_;
-    return integrate(m, T(hs / Plant::U::time_s), Acc(hs));
+    return integrate(m, T(hs / Plant::U::time_s), Acc(hs), cfg_.stop_keep_w);
   }
 
   // The chain on a radial end stop, or close enough to reach it within a
@@ -276,7 +277,6 @@ class RomSimulator {
   // (r2 - r2_m); changing F_ax2 at a fixed state changes that potential by
   // exactly the work the actuator books here, so the ledger stays closed.
   void update_driven_clamp() {
-    driven_work_ = Acc(0);
     const double next = driven_N_ + (driven_cmd_N_ - driven_N_) * driven_lag_;
     if (next == driven_N_) return;
     if (!cfg_.energy_ledger) {
@@ -287,8 +287,7 @@ class RomSimulator {
     const Acc before = plant_.stored_energy(x_);
     driven_N_ = next;
     plant_.set_driven_clamp_N(driven_N_);
-    driven_work_ = plant_.stored_energy(x_) - before;
-    ledger_.actuator_J += driven_work_;
+    ledger_.actuator_J += plant_.stored_energy(x_) - before;
   }
   static T abs_of(const T& v) { return v < T(0) ? -v : v; }
 
@@ -301,12 +300,19 @@ class RomSimulator {
   RomFault fault_ = RomFault::none;
   EnergyLedger<Acc> ledger_{};
   Contact contact_{};
+  // Wedging: the Jacobian and W of the last implicit substep, which the
+  // substeps of a frame refined at the end stop keep (docs/rom.md#end-stop).
+  struct KeptW {
+    typename Plant::Jacobian J = Plant::Jacobian::Zero();
+    RomWSolver<T, Features> w;
+  };
+  struct NoKeptW {};
+  std::conditional_t<Plant::Layout::kWedge, KeptW, NoKeptW> kept_{};
   Carry carry_{};
   bool contact_stale_ = true;
   long frames_ = 0;
   double driven_cmd_N_, driven_N_, driven_lag_;
   T frame_;  // one frame in the plant's time unit
-  Acc driven_work_{};
   long stop_refined_ = 0;
   T speed_limit_, resolved_speed_;
 };

@@ -53,8 +53,12 @@ class RomWSolver {
   static constexpr int kKinCore[5] = {2, 3, kWedge ? 4 : 0, 5, 0};
 
  public:
-  // W = I - a J for the Jacobian J at the step's start.
-  void factor(const typename Plant::Jacobian& J, const T& a) {
+  // W = I - a J for the Jacobian J at the step's start. Reads only the
+  // entries the structure above names: the core rows, the kinematic rows'
+  // entries and the axial block (CvtRom::jacobian_entries writes those).
+  void factor(const typename Plant::Jacobian& J, const T& a_ref) {
+    // By value: a reference could alias the stores below, and be read again after each.
+    const T a = a_ref;
     #pragma GCC unroll 8
     for (int p = 0; p < kNumKin; ++p) kin_[p] = a * J(kKin[p], kCore[kKinCore[p]]);
     if constexpr (kPhaseRow) {
@@ -154,10 +158,10 @@ class RomWSolver {
     #pragma GCC unroll 8
     for (int k = 0; k < kM; ++k) {
       int piv = k;
-      T big = abs_of(lu_[k][k]);
+      T big = abs(lu_[k][k]);
       #pragma GCC unroll 8
       for (int i = k + 1; i < kM; ++i) {
-        const T v = abs_of(lu_[i][k]);
+        const T v = abs(lu_[i][k]);
         if (v > big) {
           big = v;
           piv = i;
@@ -204,8 +208,6 @@ class RomWSolver {
     }
   }
 
-  static T abs_of(const T& v) { return v < T(0) ? -v : v; }
-
   // Written by factor() before solve() reads them; not initialised, since a
   // solver is made for every step and zeroing it cost 60 instructions there.
   T kin_[5];
@@ -223,25 +225,65 @@ class RomWSolver {
   int perm_[kM];
 };
 
-// One ROS2 or linearly implicit Euler step of a plant without wedging, from
-// a state whose friction is already evaluated (c = sys.contact(x)): the
-// simulator evaluates it once per state and shares it with the energy ledger
-// (docs/rom.md#cost). `w_slope_floor` builds W with the friction slope floor
-// of docs/rom.md#slope-floor; without it W = I - gamma h J exactly.
-// `carry` keeps the fixed-point rounding remainders from step to step
+// A W solver already factored for this step's a = gamma h: factor() keeps
+// it, solve() is the kept solver's. The further substeps of a frame refined
+// at the end stop take the W of its first substep (docs/rom.md#end-stop):
+// ROS2 is a W-method and keeps its order with any W, so they need neither a
+// Jacobian nor a factorisation.
+template <class WSolver>
+class FactoredW {
+ public:
+  explicit FactoredW(const WSolver& w) : w_(w) {}
+  template <class Jac, class T>
+  void factor(const Jac&, const T&) {}
+  template <class Vec>
+  Vec solve(const Vec& f) const {
+    return w_.solve(f);
+  }
+
+ private:
+  const WSolver& w_;
+};
+
+// What a step of rom_step_implicit_with evaluates afresh (docs/rom.md#end-stop):
+// the Jacobian at x and W, or nothing (the W of a step of the same h kept).
+enum class RomWUse : std::uint8_t { fresh, kept_w };
+
+// One ROS2 or linearly implicit Euler step from a state whose contact is
+// already evaluated (c = sys.contact(x)), with the caller's Jacobian and W
+// solver, which keep what `Use` says they hold and hold this step's after it.
+// `w_slope_floor` builds W with the friction slope floor of
+// docs/rom.md#slope-floor; without it W = I - gamma h J exactly. `carry`
+// keeps the fixed-point rounding remainders from step to step
 // (integrate/increment.hpp); floating point ignores it.
+template <RomWUse Use, class T, std::uint32_t F>
+void rom_step_implicit_with(Method m, const CvtRom<T, F>& sys, typename CvtRom<T, F>::State& x, const T& h,
+                            const typename CvtRom<T, F>::Contact& c, bool w_slope_floor,
+                            typename CvtRom<T, F>::Jacobian& J, RomWSolver<T, F>& w,
+                            CarryOf<CvtRom<T, F>>* carry = nullptr) {
+  // Only the entries the W solver reads are written.
+  if constexpr (Use == RomWUse::fresh) sys.jacobian_entries(x, c, J, w_slope_floor);
+  typename CvtRom<T, F>::State f;
+  sys.derivative(x, c, f);
+  if constexpr (Use == RomWUse::kept_w) {
+    FactoredW<RomWSolver<T, F>> kept(w);
+    if (m == Method::linear_implicit_euler) step_linear_implicit_euler_with(sys, x, h, J, kept, f, carry);
+    else step_ros2_with(sys, x, h, J, kept, f, carry);
+  } else {
+    if (m == Method::linear_implicit_euler) step_linear_implicit_euler_with(sys, x, h, J, w, f, carry);
+    else step_ros2_with(sys, x, h, J, w, f, carry);
+  }
+}
+
+// The same with a Jacobian and W of its own: the simulator's step
+// (docs/rom.md#cost), which shares the contact with the energy ledger.
 template <class T, std::uint32_t F>
 void rom_step_implicit(Method m, const CvtRom<T, F>& sys, typename CvtRom<T, F>::State& x, const T& h,
                        const typename CvtRom<T, F>::Contact& c, bool w_slope_floor,
                        CarryOf<CvtRom<T, F>>* carry = nullptr) {
-  using Plant = CvtRom<T, F>;
-  typename Plant::Jacobian J;
-  sys.jacobian(x, c, J, w_slope_floor);
+  typename CvtRom<T, F>::Jacobian J;
   RomWSolver<T, F> w;
-  typename Plant::State f;
-  sys.derivative(x, c, f);
-  if (m == Method::linear_implicit_euler) step_linear_implicit_euler_with(sys, x, h, J, w, f, carry);
-  else step_ros2_with(sys, x, h, J, w, f, carry);
+  rom_step_implicit_with<RomWUse::fresh>(m, sys, x, h, c, w_slope_floor, J, w, carry);
 }
 
 // One step of `m` on the plant: ROS2 and linearly implicit Euler through
@@ -260,19 +302,7 @@ void rom_step(Method m, const CvtRom<T, F>& sys, typename CvtRom<T, F>::State& x
     case Method::linear_implicit_euler:
     case Method::ros2: break;
   }
-  if constexpr (RomLayout<F>::kWedge) {
-    // Wedging evaluates its contact inside derivative() and jacobian();
-    // the solve is the same block elimination (docs/rom.md#wedging).
-    typename CvtRom<T, F>::Jacobian J;
-    typename CvtRom<T, F>::State f;
-    sys.jacobian_and_derivative(x, J, f);
-    if (w_slope_floor) sys.add_w_slope_floor(x, J);
-    RomWSolver<T, F> w;
-    if (m == Method::linear_implicit_euler) step_linear_implicit_euler_with(sys, x, h, J, w, f, carry);
-    else step_ros2_with(sys, x, h, J, w, f, carry);
-  } else {
-    rom_step_implicit(m, sys, x, h, sys.contact(x), w_slope_floor, carry);
-  }
+  rom_step_implicit(m, sys, x, h, sys.contact(x), w_slope_floor, carry);
 }
 
 }  // namespace cvt

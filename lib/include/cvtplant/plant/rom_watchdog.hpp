@@ -40,6 +40,16 @@ inline constexpr const char* rom_fault_name(RomFault f) {
   return "?";
 }
 
+// x - x is +0 for every finite x and NaN for NaN and +-inf, and NaN stays NaN
+// through a sum: the sum of x_i - x_i over a vector is 0 exactly when every
+// x_i is finite. One comparison for the whole vector instead of two per
+// component (the frame's checks, docs/rom.md#cost); needs the arithmetic done
+// as written (no -ffast-math, which would fold x - x to 0).
+template <class T>
+inline bool rom_all_finite_zero(const T& sum_of_differences) {
+  return sum_of_differences == T(0);
+}
+
 // False for NaN and +-inf; fixed point has neither.
 template <class T>
 inline bool rom_finite(const T& v) {
@@ -57,7 +67,8 @@ inline bool rom_finite(const T& v) {
 template <class T>
 inline RomFault rom_input_fault(const T& tau_in, const T& tau_load, const T& clamp) {
   if constexpr (std::is_floating_point_v<T>) {
-    if (!rom_finite(tau_in) || !rom_finite(tau_load) || !rom_finite(clamp)) return RomFault::input_non_finite;
+    if (!rom_all_finite_zero((tau_in - tau_in) + (tau_load - tau_load) + (clamp - clamp)))
+      return RomFault::input_non_finite;
   } else {
     auto rail = [](const T& v) { return v == T::max() || v == T::lowest(); };
     if (rail(tau_in) || rail(tau_load) || rail(clamp)) return RomFault::input_saturated;
@@ -70,14 +81,16 @@ inline RomFault rom_input_fault(const T& tau_in, const T& tau_load, const T& cla
 template <class State>
 inline RomFault rom_state_fault(const State& x) {
   using T = typename State::Scalar;
-  for (int i = 0; i < x.size(); ++i) {
-    if constexpr (std::is_floating_point_v<T>) {
-      if (!rom_finite(x(i))) return RomFault::state_non_finite;
-    } else {
+  if constexpr (std::is_floating_point_v<T>) {
+    T z = x(0) - x(0);
+    #pragma GCC unroll 16
+    for (int i = 1; i < State::RowsAtCompileTime; ++i) z += x(i) - x(i);
+    return rom_all_finite_zero(z) ? RomFault::none : RomFault::state_non_finite;
+  } else {
+    for (int i = 0; i < x.size(); ++i)
       if (x(i) == T::max() || x(i) == T::lowest()) return RomFault::state_saturated;
-    }
+    return RomFault::none;
   }
-  return RomFault::none;
 }
 
 }  // namespace cvt

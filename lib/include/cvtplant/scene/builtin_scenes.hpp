@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "cvtplant/scene/calibrated_params.hpp"
+#include "cvtplant/scene/calibrated_tension.hpp"
 #include "cvtplant/scene/calibrated_wrap_tension.hpp"
 #include "cvtplant/scene/scene.hpp"
 
@@ -60,7 +61,8 @@ constexpr Scene oscillator(const char* name, const char* summary, const Friction
 }
 
 // Seed section 4: tau_in = 100 N m, tau_l = 50 N m, Table 1/2, from rest,
-// clamping command 3.3 kN = 1.3 x the 2.54 kN that carries 100 N m at mu0.
+// under a clamping actuator: command 3.3 kN = 1.3 x the 2.54 kN that carries
+// 100 N m at mu0.
 constexpr Scene seed_case(const char* name, const char* summary, const FrictionParams<double>& f) {
   Scene s;
   s.name = name;
@@ -72,6 +74,22 @@ constexpr Scene seed_case(const char* name, const char* summary, const FrictionP
   s.tau_load = constant_profile(seed::kLoadTorque_Nm);
   s.clamp = constant_profile(3300.0);
   s.t_end_s = 10.0;
+  return s;
+}
+
+// Seed section 4 as the seed runs it: its pulleys are fixed (the seed gives
+// no clamping force), so the chain's own tension sets the axial force: the
+// tension feature on fixed sheaves (docs/rom.md#tension) with the parameters
+// calibrated on the multibody reference's fixed sheaves
+// (calibrated_tension.hpp, written with tools/params/tension.toml;
+// docs/validation.md#calibrated-set). The clamping profile stays the
+// actuator case's 3.3 kN: fixed sheaves do not use it, the scene files that
+// add the axial feature (seed-case1-clamped, seed-case1-wedging) do.
+constexpr Scene seed_case_fixed(const char* name, const char* summary, const FrictionParams<double>& f) {
+  Scene s = seed_case(name, summary, f);
+  s.features = rom_feature::tension;
+  s.params.fixed_sheaves = true;
+  calibrated::apply_tension(s.params);
   return s;
 }
 
@@ -149,8 +167,10 @@ inline constexpr Scene kBuiltinScenes[] = {
                                friction_presets::oscillator_coulomb<double>(), 40.0),
     builtin_detail::oscillator("oscillator-stribeck", "seed Eq. 9, Stribeck (sec. 3) from [0 3 0 6]: stick-slip cycle",
                                friction_presets::oscillator_stribeck<double>(), 60.0),
-    builtin_detail::seed_case("seed-case1", "seed sec. 4: 100/50 N m, Table 1, Table 2 case 1, 3.3 kN clamping",
-                              friction_presets::table2_case1<double>()),
+    builtin_detail::seed_case_fixed("seed-case1",
+                                    "seed sec. 4: 100/50 N m, Table 1, Table 2 case 1, fixed sheaves (clamp input "
+                                    "unused): chain creep and centrifugal unloading to gross slip",
+                                    friction_presets::table2_case1<double>()),
     builtin_detail::seed_case("seed-case2", "seed sec. 4: 100/50 N m, Table 1, Table 2 case 2, 3.3 kN clamping",
                               friction_presets::table2_case2<double>()),
     builtin_detail::clamp_step(),

@@ -37,6 +37,10 @@ struct Sample {
   double tau_in_Nm = 0;           // torque on the driver (a speed hold: the holding torque)
   double tau_load_Nm = 0;         // load torque on the driven pulley (or its holding torque)
   double slip_m_s[2] = {0, 0};    // pulley surface speed minus chain speed, mean over the wrap
+  // The same per bolt, its smallest and largest value over the wrap (NaN when
+  // no bolt is in the wrap): the whole wrap slides forward where the smallest
+  // is positive (docs/mbd.md#outputs).
+  double slip_min_m_s[2] = {0, 0}, slip_max_m_s[2] = {0, 0};
   double tension_tight_N = 0;     // upper strand (into the driver wrap); NaN if no free joint
   double tension_slack_N = 0;     // lower strand
   int wrap_links[2] = {0, 0};     // links whose bolt is compressed by each pulley
