@@ -670,9 +670,13 @@ class CvtRom {
     J(L::kPsi, L::kX2) = d_x;
     J(L::kPsi, L::kV1) = d_xd;
     J(L::kPsi, L::kV2) = d_xd;
-    if (!c_.hold2) J(L::kPsi, L::kW2) = per_tau(c_.psi_per_m * c_.r2 * rho + d_Ts * sp.w2);
+    // Every entry the structured solve reads is written, zeros included: the
+    // step's J is never zeroed (jacobian_entries).
+    J(L::kPsi, L::kW1) = T(0);
+    J(L::kPsi, L::kW2) = c_.hold2 ? T(0) : per_tau(c_.psi_per_m * c_.r2 * rho + d_Ts * sp.w2);
     if constexpr (L::kAxial) {
-      if (sp.Fc != T(0) && x(L::kDelta) > T(0)) J(L::kPsi, L::kDelta) = per_tau(d_Ts * (sp.Fc * c_.K_ax));
+      J(L::kPsi, L::kDelta) =
+          sp.Fc != T(0) && x(L::kDelta) > T(0) ? per_tau(d_Ts * (sp.Fc * c_.K_ax)) : T(0);
     }
   }
 
