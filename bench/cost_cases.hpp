@@ -34,7 +34,7 @@ inline void clamped_sheaves(Scene& s) { s.params.fixed_sheaves = false; }
 // (docs/rom.md#link-ripple), and with the ripple off (g = 0).
 inline void fixed_sheaves_ripple(Scene& s) {
   s.params.fixed_sheaves = true;
-  s.params.ripple_gain = 0.14;
+  s.params.ripple_gain = 0.148;
 }
 
 // The feature mask is a template argument of the plant, so the rows are
