@@ -30,6 +30,12 @@ struct Case {
 // tension state, its clamped regime).
 inline void fixed_sheaves(Scene& s) { s.params.fixed_sheaves = true; }
 inline void clamped_sheaves(Scene& s) { s.params.fixed_sheaves = false; }
+// tools/scenes/seed-case1-ripple.toml: the same with the link-passing ripple
+// (docs/rom.md#link-ripple), and with the ripple off (g = 0).
+inline void fixed_sheaves_ripple(Scene& s) {
+  s.params.fixed_sheaves = true;
+  s.params.ripple_gain = 0.148;
+}
 
 // The feature mask is a template argument of the plant, so the rows are
 // visited at compile time: v.template visit<Mask>(row) for every row.
@@ -77,6 +83,12 @@ void for_each_case(Visitor&& v) {
   v.template visit<f::tension>(Case{"scene/seed-case1-tension", "seed-case1", 0, true, nullptr, &fixed_sheaves});
   v.template visit<f::axial | f::tension>(
       Case{"feature/seed-case1+tension", "seed-case1", 0, true, nullptr, &clamped_sheaves});
+  // Chordal action with the tension feature at the scene's 4 substeps, with
+  // and without the ripple: the ripple's own cost (docs/rom.md#link-ripple).
+  v.template visit<f::tension | f::polygon>(
+      Case{"scene/seed-case1-ripple", "seed-case1", 4, true, nullptr, &fixed_sheaves_ripple});
+  v.template visit<f::tension | f::polygon>(
+      Case{"scene/seed-case1-ripple/off", "seed-case1", 4, true, nullptr, &fixed_sheaves});
 }
 
 // Where the measured frame starts: the scene run on its own input profiles

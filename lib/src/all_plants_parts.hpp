@@ -1,7 +1,7 @@
 #pragma once
 // The parts of AllRomPlants<T>::build. Each part is explicitly instantiated
 // per scalar type in its own translation unit (all_plants_<scalar>_<part>.cpp),
-// so that a two-core build compiles the 88 plants in parallel.
+// so that a two-core build compiles the 91 plants in parallel.
 #include <cstdint>
 
 #include "cvtplant/scene/all_plants.hpp"
@@ -24,10 +24,12 @@ IRomSimulator<T>* build_wedging(std::uint32_t features, const RomParams& p, cons
   return RomPlantSet<T, 17, 19, 21, 23, 25, 27, 29, 31>::build(features, p, c, storage);
 }
 
-// Masks 32..39: tension with axial, road load and deformation (docs/rom.md#tension).
+// Masks 32..39: tension with axial, road load and deformation (docs/rom.md#tension);
+// mask 40, tension with polygon, for the link-passing ripple's scene
+// (tools/scenes/seed-case1-ripple.toml, docs/rom.md#link-ripple).
 template <class T>
 IRomSimulator<T>* build_tension(std::uint32_t features, const RomParams& p, const RomSimConfig& c, void* storage) {
-  return RomPlantSet<T, 32, 33, 34, 35, 36, 37, 38, 39>::build(features, p, c, storage);
+  return RomPlantSet<T, 32, 33, 34, 35, 36, 37, 38, 39, 40>::build(features, p, c, storage);
 }
 
 // Instantiated in the part translation units only.

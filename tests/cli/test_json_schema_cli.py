@@ -18,7 +18,8 @@ CLI = sys.argv.pop(1) if len(sys.argv) > 1 else "cvtplant"
 
 # SI unit suffixes (docs/cli.md#json-output). `_Nm` is newton-metre, `_N_m`
 # newton per metre, `_Ns_m` newton-second per metre; `_iter` counts map iterations.
-UNIT_SUFFIXES = ("_s", "_ns", "_rad_s", "_rad", "_m", "_m_s", "_N", "_Nm", "_N_m", "_Ns_m", "_kg", "_J", "_W", "_iter")
+UNIT_SUFFIXES = ("_s", "_ns", "_rad_s", "_rad", "_m", "_m_s", "_N", "_Nm", "_N_m", "_Ns_m", "_kg", "_J", "_W", "_Hz",
+                 "_iter")
 # Dimensionless by a suffix or prefix that says so.
 DIMENSIONLESS_SUFFIXES = ("_rel", "_count", "_efolds")
 DIMENSIONLESS_PREFIXES = ("ratio", "rel_")  # rel_rms: relative RMS error
@@ -47,7 +48,7 @@ SERIES_MEASURES = {
     "k_begin", "k_end", "k_max", "Lmax", "Vmax", "lmin", "vmin", "n_c", "subsample",
 }
 # Keys of rows whose unit is named beside them (`unit`, or a `name` with a unit suffix).
-ROW_VALUES = {"value", "start", "sigma", "plant_ss", "reference_ss"}
+ROW_VALUES = {"value", "start", "sigma", "plant_ss", "reference_ss", "mean", "std", "peak_to_peak", "line_amplitude"}
 # One name for one quantity: the names a command must not use, and the shared one.
 NOT_SHARED = {"dt": "dt_s / frame_s", "t_end": "t_end_s", "t": "t_s", "t_transient": "t_transient_s",
               "t_renorm": "t_renorm_s", "t_warmup": "t_warmup_s", "sample_dt_s": "sample_s", "method": "integrator",
@@ -206,6 +207,12 @@ class Schema(unittest.TestCase):
         png = os.path.join(self.tmp.name, "rp.png")
         self.check(run_json("analyze", "recurrence", "--csv", self.csv, "--column", "s", "--png", png),
                    exempt=SERIES_MEASURES)
+
+    def test_analyze_ripple(self):
+        j = self.check(run_json("analyze", "ripple", "--csv", self.csv, "--column", "s", "--windows", "0:10,10:20",
+                                "--min-hz", "0.5", "--unit", "m"))
+        self.assertEqual(j["windows"][0]["unit"], "m")
+        self.assertEqual(j["windows"][1]["t_begin_s"], 10.0)
 
 
 if __name__ == "__main__":

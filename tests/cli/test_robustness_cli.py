@@ -393,7 +393,7 @@ class RangesDocumented(unittest.TestCase):
 
     SUBS = ["oscillator", "run", "rom-accuracy", "lyapunov"] + ["analyze " + t for t in (
         "ami", "fnn", "cao", "lle", "rqa", "recurrence", "test01", "classify", "trajectory", "sweep", "figures",
-        "seed-section4")]
+        "seed-section4", "ripple")]
 
     def help_ranges(self, sub):
         r = run(*sub.split(), "--help")

@@ -61,6 +61,7 @@ struct CountFrames {
   std::uint32_t ratio_control = 0, on_stop = 0;
   std::uint32_t seed_case1_no_ledger = 0, seed_case1_lean = 0, ratio_control_no_ledger = 0;
   std::uint32_t seed_case1_tension = 0, seed_case1_axial_tension = 0;
+  std::uint32_t ripple = 0, ripple_off = 0;
 
   template <std::uint32_t F>
   void visit(const rom_cost::Case& c) {
@@ -77,6 +78,8 @@ struct CountFrames {
     if (str_is(c.label, "scene/ratio-control/no-ledger")) ratio_control_no_ledger = n;
     if (str_is(c.label, "scene/seed-case1-tension")) seed_case1_tension = n;
     if (str_is(c.label, "feature/seed-case1+tension")) seed_case1_axial_tension = n;
+    if (str_is(c.label, "scene/seed-case1-ripple")) ripple = n;
+    if (str_is(c.label, "scene/seed-case1-ripple/off")) ripple_off = n;
   }
 
   static bool str_is(const char* a, const char* b) { return cvt::target::str_equal(a, b); }
@@ -126,6 +129,9 @@ CVT_TARGET_TEST(rom_frame_instruction_counts_float) {
   CHECK_LE(counts.seed_case1_tension, kGoalDefaultScene);
   CHECK_LE(counts.seed_case1_axial_tension, 2880u);
   CHECK_GT(counts.seed_case1_axial_tension, counts.seed_case1);
+  // The link-passing ripple (docs/rom.md#link-ripple): a cosine and a sine
+  // per contact evaluation over the same plant with the ripple off.
+  CHECK_GT(counts.ripple, counts.ripple_off);
 }
 
 // The default scene in q16.16, for FPU-less targets: every product is a

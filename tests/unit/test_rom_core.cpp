@@ -216,6 +216,13 @@ TEST_CASE("fixed-point ROM: derivative and Jacobian in its units equal the SI on
     cvt::RomParams pf = p;
     pf.fixed_sheaves = true;
     check_fixed_units<f::tension | f::road_load>(pf, x0, 0.0);
+    // Chordal action with the tension feature: the ripple on the chain's
+    // axial force and the phase row of the link passing (docs/rom.md#link-ripple).
+    cvt::RomParams pr = p;
+    pr.ripple_gain = 1.0;
+    pf.ripple_gain = 1.0;
+    check_fixed_units<f::tension | f::polygon>(pf, x0, 0.0, 1e-2);
+    check_fixed_units<f::tension | f::polygon | f::axial>(pr, x0, 1500.0, 1e-2);
   }
 }
 
@@ -250,6 +257,7 @@ void check_structured_step(const cvt::RomParams& p, const cvt::RomInitial& x0, c
 
 TEST_CASE("ROM structured linear solve equals the dense LU step for every feature") {
   cvt::RomParams p = road_load_params();
+  p.ripple_gain = 1.0;  // the link-passing ripple's entries where polygon is on (docs/rom.md#link-ripple)
   const cvt::RomInitial x0 = driving_state(100.0);
   namespace f = cvt::rom_feature;
   for (const cvt::Method m : {cvt::Method::ros2, cvt::Method::linear_implicit_euler}) {
@@ -265,12 +273,22 @@ TEST_CASE("ROM structured linear solve equals the dense LU step for every featur
     // x_i and delta, which the elimination takes in (docs/rom.md#tension).
     check_structured_step<f::tension>(p, x0, m);
     check_structured_step<f::tension | f::basic>(p, x0, m);
+    // With chordal action the phase row follows the chain's link passing:
+    // entries in w2, x_i, xd_i and delta, eliminated on its own
+    // (docs/rom.md#link-ripple).
+    check_structured_step<f::tension | f::polygon>(p, x0, m);
+    check_structured_step<f::tension | f::polygon | f::axial>(p, x0, m);
     p.fixed_sheaves = true;
     check_structured_step<f::tension | f::road_load>(p, x0, m);
+    check_structured_step<f::tension | f::polygon | f::road_load>(p, x0, m);
     p.fixed_sheaves = false;
     p.hold_driver_speed = true;  // a held pulley: identity row and column
     check_structured_step<f::axial | f::road_load>(p, x0, m);
     check_structured_step<f::tension | f::axial>(p, x0, m);
+    check_structured_step<f::tension | f::polygon | f::axial>(p, x0, m);
     p.hold_driver_speed = false;
+    p.hold_driven_speed = true;
+    check_structured_step<f::tension | f::polygon>(p, x0, m);
+    p.hold_driven_speed = false;
   }
 }

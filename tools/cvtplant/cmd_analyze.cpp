@@ -1,6 +1,7 @@
 // `cvtplant analyze <tool>`: nonlinear time-series analysis of one CSV column
 // (docs/analysis.md): ami, fnn, cao, lle, rqa, recurrence, test01, classify;
 // plus sweep / merge / figures / trajectory for scene studies.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -16,6 +17,7 @@
 #include "cvtplant/analysis/errors.hpp"
 #include "cvtplant/analysis/figures.hpp"
 #include "cvtplant/analysis/lle.hpp"
+#include "cvtplant/analysis/ripple.hpp"
 #include "cvtplant/analysis/rom_scenes.hpp"
 #include "cvtplant/analysis/rqa.hpp"
 #include "cvtplant/analysis/section4.hpp"
@@ -750,6 +752,70 @@ cvtcli::Action register_analyze(CLI::App& app) {
                          for (const auto& e : j["evidence"]) std::printf("  - %s\n", e.get<std::string>().c_str());
                        }
                        std::printf("wrote %s\n", summary.c_str());
+                       return 0;
+                     }});
+  }
+
+  {  // ripple
+    struct R {
+      std::string csv, column, time_column, windows, unit;
+      RippleOptions o;
+      bool json = false;
+      cvtcli::Caps caps;
+    };
+    auto a = std::make_shared<R>();
+    auto* c = an->add_subcommand("ripple", "detrended spread and dominant frequency of a column over time windows");
+    c->add_option("--csv", a->csv, "input CSV with a header row and a time column")->required();
+    c->add_option("--column", a->column, "column name")->required();
+    c->add_option("--time-column", a->time_column, "time column [s] (default: t_s if present, else t)");
+    c->add_option("--windows", a->windows, "windows [t0, t1) in s: T0:T1,T0:T1,...")->required();
+    cvtcli::add_real(c, "--min-hz", a->o.min_hz, {0, 1e9},
+                     "search the dominant frequency at or above this [Hz] (default 20)");
+    cvtcli::add_real(c, "--band", a->o.band, {0, 10, true},
+                     "the line's band around it, relative: f/(1+b)..f(1+b) (default 0.2)");
+    c->add_option("--unit", a->unit, "the column's unit, reported beside its values (default: '-')");
+    c->add_flag("--json", a->json, "machine-readable output");
+    cvtcli::add_caps(c, a->caps, false, true);
+    tools.push_back({c, [a] {
+                       std::vector<std::pair<double, double>> wins;
+                       std::size_t from = 0;
+                       while (from <= a->windows.size()) {
+                         const std::size_t comma = std::min(a->windows.find(',', from), a->windows.size());
+                         const std::string w = a->windows.substr(from, comma - from);
+                         const std::size_t colon = w.find(':');
+                         if (colon == std::string::npos)
+                           throw cvtcli::UsageError{"--windows: '" + w + "' is not T0:T1"};
+                         const double t0 = cvtcli::parse_finite(w.substr(0, colon), "--windows");
+                         const double t1 = cvtcli::parse_finite(w.substr(colon + 1), "--windows");
+                         if (!(t1 > t0)) throw cvtcli::UsageError{"--windows: '" + w + "' must end after it begins"};
+                         wins.emplace_back(t0, t1);
+                         from = comma + 1;
+                       }
+                       std::string tcol = a->time_column;
+                       if (tcol.empty()) {
+                         const auto head = read_csv_header(a->csv);
+                         tcol = std::find(head.begin(), head.end(), "t_s") != head.end() ? "t_s" : "t";
+                       }
+                       const CsvColumn t = read_column(a->csv, tcol, a->caps);
+                       const CsvColumn y = read_column(a->csv, a->column, a->caps);
+                       const std::string unit = a->unit.empty() ? "-" : a->unit;
+                       json rows = json::array();
+                       if (!a->json)
+                         std::printf("%-12s %8s %12s %10s %10s %10s %10s\n", "window_s", "samples", "mean", "std",
+                                     "p-p", "peak_Hz", "line_amp");
+                       for (const auto& [t0, t1] : wins) {
+                         const RippleWindow r = ripple_window(t.values, y.values, t0, t1, a->o);
+                         rows.push_back({{"t_begin_s", r.t_begin_s}, {"t_end_s", r.t_end_s}, {"samples", r.samples},
+                                         {"mean", r.mean}, {"std", r.std}, {"peak_to_peak", r.peak_to_peak},
+                                         {"line_amplitude", r.line_amplitude}, {"unit", unit},
+                                         {"peak_Hz", r.peak_hz}});
+                         if (!a->json)
+                           std::printf("%5g-%-6g %8zu %12.6g %10.4g %10.4g %10.4g %10.4g\n", t0, t1, r.samples, r.mean,
+                                       r.std, r.peak_to_peak, r.peak_hz, r.line_amplitude);
+                       }
+                       if (a->json)
+                         cvtcli::print_json({{"column", a->column}, {"time_column", tcol}, {"min_Hz", a->o.min_hz},
+                                             {"band_rel", a->o.band}, {"windows", rows}});
                        return 0;
                      }});
   }

@@ -204,7 +204,7 @@ class Reader {
                  "c1_Ns_m", "k2_N_m", "c2_Ns_m", "entry_load_share", "normal_load_factor", "hold_driver_speed", "hold_driven_speed", "stick_speed_m_s",
                  "speed_limit_rad_s", "actuator_tau_s", "clamp_max_N", "sheave_mass_kg", "sheave_damping_Ns_m", "K_ax_N_m", "road_T0_Nm",
                  "road_cv_Nms_rad", "road_ca_Nms2_rad2", "road_w_eps_rad_s", "zeta1_rad", "zeta2_rad", "pitch_m",
-                 "driven_clamp_N", "radial_mass_kg", "radial_damping_Ns_m", "radial_travel_m", "radial_stop_N_m",
+                 "ripple_gain", "driven_clamp_N", "radial_mass_kg", "radial_damping_Ns_m", "radial_travel_m", "radial_stop_N_m",
                  "wrap_tension_share", "chain_mass_kg_m", "chain_stiffness_N", "creep_gain", "stop_tension_N",
                  "stop_tension_share", "centrifugal_gain", "wrap_excess_share", "fixed_sheaves"});
     p.r1_m = number(t, pre, "r1_m", p.r1_m);
@@ -236,6 +236,7 @@ class Reader {
     p.zeta1_rad = number(t, pre, "zeta1_rad", p.zeta1_rad);
     p.zeta2_rad = number(t, pre, "zeta2_rad", p.zeta2_rad);
     p.pitch_m = number(t, pre, "pitch_m", p.pitch_m);
+    p.ripple_gain = number(t, pre, "ripple_gain", p.ripple_gain);
     p.driven_clamp_N = number(t, pre, "driven_clamp_N", p.driven_clamp_N);
     p.radial_mass_kg = number(t, pre, "radial_mass_kg", p.radial_mass_kg);
     p.radial_damping_Ns_m = number(t, pre, "radial_damping_Ns_m", p.radial_damping_Ns_m);

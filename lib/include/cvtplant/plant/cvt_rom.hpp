@@ -44,6 +44,16 @@
 
 namespace cvt {
 
+// The shared contact of a plant with chordal action also carries cos and sin
+// of the link-passing ripple's phase theta (docs/rom.md#link-ripple); an
+// empty base without the feature.
+template <class T, bool kPolygon>
+struct RomContactRipple {};
+template <class T>
+struct RomContactRipple<T, true> {
+  T ripple_cos{}, ripple_sin{};
+};
+
 template <class T, std::uint32_t Features = 0>
 class CvtRom {
   using L = RomLayout<Features>;
@@ -184,6 +194,42 @@ class CvtRom {
     return pitch_radius1(x);
   }
 
+  // docs/rom.md#link-ripple: cos(theta) of the loaded-bolt count's
+  // fundamental at the link phase, theta = pi psi / alpha + phi0 (0 without
+  // chordal action or with the ripple off, A = 0: F_ax (1 + 0) is F_ax, and
+  // a plant without the ripple pays no cosine).
+  template <class S>
+  S ripple_cos(const Eigen::Matrix<S, kStates, 1>& x) const {
+    if constexpr (L::kPolygon) {
+      if (rippled()) return cos(ripple_angle(x(L::kPsi)));
+    }
+    (void)x;
+    return S(T(0));
+  }
+  template <class S>
+  S ripple_angle(const S& psi) const {
+    return S(c_.rip_k) * psi + S(c_.rip_phase);
+  }
+
+  // The axial force that loads the lumps (docs/rom.md#link-ripple): the
+  // sheave's or the chain's F_ax, with chordal action F_ax (1 + A cos theta).
+  // The sheave's own balance keeps F_ax (docs/rom.md#axial). With the
+  // ripple off (A = 0) F_ax itself, at no cost.
+  template <class S>
+  S lumps_axial_force(const S& fax, const S& cos_theta) const {
+    if constexpr (L::kPolygon) {
+      if (rippled()) return rippled_axial_force(fax, S(c_.rip_A), cos_theta);
+    }
+    (void)cos_theta;
+    return fax;
+  }
+  // True when the plant carries the link-passing ripple (chordal action and
+  // A != 0, docs/rom.md#link-ripple); the ripple's terms are skipped otherwise.
+  bool rippled() const {
+    if constexpr (L::kPolygon) return c_.rip_A != T(0);
+    return false;
+  }
+
   // False once the chain is through an end stop by another full travel: the
   // stop stiffness cannot hold what drives it (wedging only; the simulator
   // reports it as a fault, docs/rom.md#wedging).
@@ -313,7 +359,8 @@ class CvtRom {
   // Jacobian and the power terms, since the exponentials and the atan are most
   // of a frame on a Cortex-M (docs/rom.md#cost).
   // With the tension feature it also carries the chain's tension state.
-  struct FixedRatioContact : RomContactTension<T, L::kTension> {
+  // With chordal action it carries cos and sin of the ripple's link phase.
+  struct FixedRatioContact : RomContactTension<T, L::kTension>, RomContactRipple<T, L::kPolygon> {
     T r1e{};             // effective driver radius [m]
     T v_rel1{}, v_rel2{};  // slip speeds [m/s]
     FrictionEval<T> lump1{}, lump2{};
@@ -327,7 +374,7 @@ class CvtRom {
   // The same sharing with wedging: each lump's tangential slip and its contact
   // forces with their partials, what the Jacobian, the right-hand side and the
   // power terms at the state need (docs/rom.md#cost).
-  struct WedgeLumpContact {
+  struct WedgeLumpContact : RomContactRipple<T, L::kPolygon> {
     T v_t1{}, v_t2{};  // tangential slip speeds [m/s]
     LumpPartials lump1{}, lump2{};
   };
@@ -335,6 +382,14 @@ class CvtRom {
 
   Contact contact(const State& x) const {
     Contact c;
+    if constexpr (L::kPolygon) {
+      // With the ripple off (A = 0) both stay 0: no term reads them then.
+      if (rippled()) {
+        const T theta = ripple_angle(x(L::kPsi));
+        c.ripple_cos = cos(theta);
+        c.ripple_sin = sin(theta);
+      }
+    }
     if constexpr (L::kWedge) {
       const T r1e = driver_radius(x);
       const T v1 = r1e * x(L::kW1);
@@ -343,8 +398,10 @@ class CvtRom {
       const T rhod = x(L::kRhoDot);
       c.v_t1 = slip_velocity<T>(vc, x(L::kV1), v1);
       c.v_t2 = slip_velocity<T>(vc, x(L::kV2), v1);
-      c.lump1 = lump_contact_partials(c.v_t1, rhod * c_.inv_cos1, normal_force(fax, c_.load1), c_.tan1);
-      c.lump2 = lump_contact_partials(c.v_t2, rhod * c_.inv_cos2, normal_force(fax, c_.load2), c_.tan2);
+      // The lumps press with the rippled force (docs/rom.md#link-ripple).
+      const T fl = lumps_axial_force(fax, contact_ripple_cos(c));
+      c.lump1 = lump_contact_partials(c.v_t1, rhod * c_.inv_cos1, normal_force(fl, c_.load1), c_.tan1);
+      c.lump2 = lump_contact_partials(c.v_t2, rhod * c_.inv_cos2, normal_force(fl, c_.load2), c_.tan2);
     } else {
       c.r1e = driver_radius(x);
       const T v1 = c.r1e * x(L::kW1);
@@ -362,6 +419,17 @@ class CvtRom {
     return c;
   }
 
+  // The link phase's rate psi' [rad/s] at x (c = contact(x)): w1, or with
+  // the tension feature 2 alpha times the chain's link passing,
+  // (2 alpha / L) v_c kL / (kL + T_s) (docs/rom.md#link-ripple). The
+  // watchdog's 8 steps per link apply to it (docs/rom.md#polygon).
+  T phase_rate(const State& x, const Contact& c) const {
+    if constexpr (L::kPolygon && L::kTension)
+      return link_phase_rate(c_.psi_per_m, c_.r2 * x(L::kW2), c_.ten_kL, c.tension.inv_D);
+    (void)c;
+    return x(L::kW1);
+  }
+
   template <class S>
   void derivative(const Eigen::Matrix<S, kStates, 1>& x, Eigen::Matrix<S, kStates, 1>& dxdt) const {
     if constexpr (L::kWedge) {
@@ -376,10 +444,11 @@ class CvtRom {
         const ChainTension<S> t = chain_tension(x, vc);
         derivative_given_tension(
             x, r1e, friction_characteristic(c_.friction, slip_velocity<S>(vc + t.creep, x(L::kV1), v1)),
-            friction_characteristic(c_.friction, slip_velocity<S>(vc, x(L::kV2), v1)), t.F_ax, dxdt);
+            friction_characteristic(c_.friction, slip_velocity<S>(vc, x(L::kV2), v1)), t, ripple_cos(x), dxdt);
       } else {
         derivative_given(x, r1e, friction_characteristic(c_.friction, slip_velocity<S>(vc, x(L::kV1), v1)),
-                         friction_characteristic(c_.friction, slip_velocity<S>(vc, x(L::kV2), v1)), dxdt);
+                         friction_characteristic(c_.friction, slip_velocity<S>(vc, x(L::kV2), v1)), ripple_cos(x),
+                         dxdt);
       }
     }
   }
@@ -390,15 +459,16 @@ class CvtRom {
       const WedgeContact<T> w{c.lump1.F, c.lump2.F, c.lump1.Fr, c.lump2.Fr};
       derivative_wedge_given(x, driver_radius(x), pitch_radius2(x), clamp_force(x), w, dxdt);
     } else if constexpr (L::kTension) {
-      derivative_given_tension(x, c.r1e, c.lump1.phi, c.lump2.phi, c.tension.F_ax, dxdt);
+      derivative_given_tension(x, c.r1e, c.lump1.phi, c.lump2.phi, c.tension, contact_ripple_cos(c), dxdt);
     } else {
-      derivative_given(x, c.r1e, c.lump1.phi, c.lump2.phi, dxdt);
+      derivative_given(x, c.r1e, c.lump1.phi, c.lump2.phi, contact_ripple_cos(c), dxdt);
     }
   }
 
-  // The axial force on the lumps at x (c = contact(x)): the clamping force,
-  // or with the tension feature the chain's (docs/rom.md#tension).
-  T axial_force(const State& x, const Contact& c) const {
+  // The axial force at x (c = contact(x)) before the link-passing ripple:
+  // the clamping force, or with the tension feature the chain's
+  // (docs/rom.md#tension).
+  T unrippled_axial_force(const State& x, const Contact& c) const {
     if constexpr (L::kTension) {
       (void)x;
       return c.tension.F_ax;
@@ -406,6 +476,16 @@ class CvtRom {
       (void)c;
       return clamp_force(x);
     }
+  }
+  // The axial force on the lumps at x (c = contact(x)), with the
+  // link-passing ripple under chordal action (docs/rom.md#link-ripple).
+  T axial_force(const State& x, const Contact& c) const {
+    return lumps_axial_force(unrippled_axial_force(x, c), contact_ripple_cos(c));
+  }
+  static T contact_ripple_cos(const Contact& c) {
+    if constexpr (L::kPolygon) return c.ripple_cos;
+    (void)c;
+    return T(0);
   }
 
   // Analytic Jacobian (docs/rom.md#jacobian). Held pulleys get zero rows AND
@@ -452,6 +532,11 @@ class CvtRom {
     const T r1e = c.r1e;
     const T fax = axial_force(x, c);
     const T N1 = normal_force(fax, c_.load1), N2 = normal_force(fax, c_.load2);
+    // docs/rom.md#link-ripple: d(lumps' F_ax)/d F_ax = 1 + A cos(theta).
+    T rip(1);
+    if constexpr (L::kPolygon) {
+      if (rippled()) rip = T(1) + c_.rip_A * c.ripple_cos;
+    }
     T s1 = c.lump1.slope, s2 = c.lump2.slope;
     if (w_slope_floor) {
       if (abs(c.v_rel1) < c_.floor_speed && s1 < c_.slope_floor) s1 = c_.slope_floor;
@@ -495,9 +580,13 @@ class CvtRom {
       // sheave off its stop (docs/rom.md#tension).
       if constexpr (L::kTension) bolt = bolt && !c.tension.on_stop;
       if (bolt) {
-        // dF_i/dF_ax = -phi(v_rel_i) / cos(beta_i)
-        dF1[L::kDelta] = per_tau(-c.lump1.phi * c_.load1 * c_.K_ax);
-        dF2[L::kDelta] = per_tau(-c.lump2.phi * c_.load2 * c_.K_ax);
+        // dF_i/dF_ax = -phi(v_rel_i) / cos(beta_i), times the ripple's factor.
+        T kb = c_.K_ax;
+        if constexpr (L::kPolygon) {
+          if (rippled()) kb = kb * rip;
+        }
+        dF1[L::kDelta] = per_tau(-c.lump1.phi * c_.load1 * kb);
+        dF2[L::kDelta] = per_tau(-c.lump2.phi * c_.load2 * kb);
       }
     }
     T sin_psi = T(0);
@@ -507,8 +596,14 @@ class CvtRom {
       const T dv = c_.r1 * sin_psi * w1;
       dF1[L::kPsi] = g1 * dv;
       dF2[L::kPsi] = g2 * dv;
+      // docs/rom.md#link-ripple: d(lumps' F_ax)/dpsi = -F_ax A (pi/alpha) sin(theta).
+      if (rippled()) {
+        const T dfl = -(unrippled_axial_force(x, c) * (c_.rip_A * c_.rip_k)) * c.ripple_sin;
+        dF1[L::kPsi] += per_tau(-c.lump1.phi * c_.load1 * dfl);
+        dF2[L::kPsi] += per_tau(-c.lump2.phi * c_.load2 * dfl);
+      }
     }
-    if constexpr (L::kTension) tension_partials(x, c, g1, dF1, dF2);
+    if constexpr (L::kTension) tension_partials(x, c, g1, rip, dF1, dF2);
     if (!free1) dF1[L::kW1] = dF2[L::kW1] = T(0);
     if (!free2) dF1[L::kW2] = dF2[L::kW2] = T(0);
 
@@ -551,7 +646,57 @@ class CvtRom {
       J(L::kDeltaDot, L::kDelta) = x(L::kDelta) > T(0) ? per_tau(-c_.K_ax * c_.inv_ms) : T(0);
       J(L::kDeltaDot, L::kDeltaDot) = per_tau(-c_.cs * c_.inv_ms);
     }
-    if constexpr (L::kPolygon) J(L::kPsi, L::kW1) = per_tau(T(1));
+    if constexpr (L::kPolygon && L::kTension) {
+      phase_row(x, c, J);
+    } else if constexpr (L::kPolygon) {
+      J(L::kPsi, L::kW1) = per_tau(T(1));
+    }
+  }
+
+  // docs/rom.md#link-ripple: the row of psi' = (2 alpha / L) v_c rho with
+  // rho = kL / (kL + T_s): d rho = -rho d T_s / (kL + T_s), and T_s's
+  // partials per regime (slack_partials). Columns w2, x_i, xd_i and, with a
+  // clamped sheave, delta.
+  void phase_row(const State& x, const Contact& c, Jacobian& J) const {
+    const ChainTension<T>& t = c.tension;
+    const T vc = c_.r2 * x(L::kW2);
+    const T rho = c_.ten_kL * t.inv_D;
+    const SlackPartials sp = slack_partials(t, c_.ten_two_m_r2 * vc);
+    // d psi' / d T_s [rad/s per N]: one product in the plant's range, then
+    // the tension unit.
+    const T d_Ts = -in_tension_unit((c_.psi_per_m * vc) * rho * t.inv_D);
+    const T d_x = per_tau(d_Ts * sp.dT * c_.k1), d_xd = per_tau(d_Ts * sp.dT * c_.c1);
+    J(L::kPsi, L::kX1) = d_x;
+    J(L::kPsi, L::kX2) = d_x;
+    J(L::kPsi, L::kV1) = d_xd;
+    J(L::kPsi, L::kV2) = d_xd;
+    // Every entry the structured solve reads is written, zeros included: the
+    // step's J is never zeroed (jacobian_entries).
+    J(L::kPsi, L::kW1) = T(0);
+    J(L::kPsi, L::kW2) = c_.hold2 ? T(0) : per_tau(c_.psi_per_m * c_.r2 * rho + d_Ts * sp.w2);
+    if constexpr (L::kAxial) {
+      J(L::kPsi, L::kDelta) =
+          sp.Fc != T(0) && x(L::kDelta) > T(0) ? per_tau(d_Ts * (sp.Fc * c_.K_ax)) : T(0);
+    }
+  }
+
+  // d T_s / d dT, d T_s / d w2 and d T_s / d F_clamp in the slack strand's
+  // regime (docs/rom.md#tension-jacobian); dTc = d T_c / d w2.
+  struct SlackPartials {
+    T dT{}, w2{}, Fc{};
+  };
+  SlackPartials slack_partials(const ChainTension<T>& t, const T& dTc) const {
+    SlackPartials r;
+    if (t.floored) {
+      if (t.dT < T(0)) r.dT = T(-1);
+    } else if (t.on_stop) {
+      r.dT = c_.ten_eta_s - c_.ten_k_ws;
+    } else {
+      r.dT = -c_.ten_k_ws;
+      r.w2 = dTc;
+      r.Fc = c_.ten_inv_cF;
+    }
+    return r;
   }
 
  public:
@@ -561,22 +706,15 @@ class CvtRom {
   // F_s2 has the columns x_i (k1) and xd_i (c1), T_c = kappa m' (r2 w2)^2 the column
   // w2, the clamping force the column delta (axial). The products are ordered
   // so that no intermediate leaves q16.16 in the range of docs/rom.md#fixed-point.
-  void tension_partials(const State& x, const Contact& c, const T& g1, T (&dF1)[kStates],
+  // rip = 1 + A cos(theta) scales the partials through the lumps' normal
+  // load under chordal action (docs/rom.md#link-ripple).
+  void tension_partials(const State& x, const Contact& c, const T& g1, const T& rip, T (&dF1)[kStates],
                         T (&dF2)[kStates]) const {
     const ChainTension<T>& t = c.tension;
     const T vc = c_.r2 * x(L::kW2);
     const T dTc = c_.ten_two_m_r2 * vc;  // d T_c / d w2 = 2 kappa m' r2 v_c
-    // d T_s / d dT, d T_s / d w2 and d T_s / d F_clamp in the slack strand's regime.
-    T s_dT(0), s_w2(0), s_Fc(0);
-    if (t.floored) {
-      if (t.dT < T(0)) s_dT = T(-1);
-    } else if (t.on_stop) {
-      s_dT = c_.ten_eta_s - c_.ten_k_ws;
-    } else {
-      s_dT = -c_.ten_k_ws;
-      s_w2 = dTc;
-      s_Fc = c_.ten_inv_cF;
-    }
+    const SlackPartials sp = slack_partials(t, dTc);
+    const T s_dT = sp.dT, s_w2 = sp.w2, s_Fc = sp.Fc;
     // creep = g eps v_c, eps = dT / (kL + T_s):
     //   d creep = g v_c (d dT - eps d T_s) / (kL + T_s) + g eps r2 d w2.
     const T gv = c_.ten_g * vc;
@@ -594,7 +732,13 @@ class CvtRom {
     }
     if (t.lifted || !t.on_stop) return;  // the clamped regime's F_ax is the bolt force (axial rows)
     // On the stop F_ax = c_F (T_max + eta_s dT - T_c): dF_i/dF_ax = -phi_i load_i.
-    const T n1 = -c.lump1.phi * c_.load1, n2 = -c.lump2.phi * c_.load2;
+    T n1 = -c.lump1.phi * c_.load1, n2 = -c.lump2.phi * c_.load2;
+    if (rippled()) {
+      n1 = n1 * rip;
+      n2 = n2 * rip;
+    } else {
+      (void)rip;
+    }
     const T f_x = c_.ten_cF_eta_s * c_.k1, f_xd = c_.ten_cF_eta_s * c_.c1, f_w2 = -c_.ten_cF * dTc;
     const T n1x = per_tau(n1 * f_x), n2x = per_tau(n2 * f_x);
     const T n1v = per_tau(n1 * f_xd), n2v = per_tau(n2 * f_xd);
@@ -621,7 +765,7 @@ class CvtRom {
     const T r2 = pitch_radius2(x);
     const T v1 = r1e * x(L::kW1);
     const T vc = r2 * x(L::kW2);
-    const T fax = clamp_force(x);
+    const T fax = lumps_axial_force(clamp_force(x), ripple_cos(x));
     const int v_col[2] = {L::kV1, L::kV2};
     const T load[2] = {c_.load1, c_.load2};
     for (int i = 0; i < 2; ++i) {
@@ -664,24 +808,32 @@ class CvtRom {
 
  private:
   // derivative() without wedging, given the effective driver radius and the
-  // friction characteristic phi_i of each lump at x.
+  // friction characteristic phi_i of each lump at x; cos_theta is the
+  // ripple's (ripple_cos, docs/rom.md#link-ripple).
   template <class S>
   void derivative_given(const Eigen::Matrix<S, kStates, 1>& x, const S& r1e, const S& phi1, const S& phi2,
-                        Eigen::Matrix<S, kStates, 1>& dxdt) const {
+                        const S& cos_theta, Eigen::Matrix<S, kStates, 1>& dxdt) const {
     const S fax = clamp_force(x);
+    const S fl = lumps_axial_force(fax, cos_theta);
     // Friction grouping as in StickSlipOscillator (docs/rom.md#holds).
-    const S F1 = lump_friction(phi1, normal_force(fax, S(c_.load1)));
-    const S F2 = lump_friction(phi2, normal_force(fax, S(c_.load2)));
+    const S F1 = lump_friction(phi1, normal_force(fl, S(c_.load1)));
+    const S F2 = lump_friction(phi2, normal_force(fl, S(c_.load2)));
     drive_train_rows(x, r1e, S(c_.r2), F1, F2, fax, dxdt);
   }
   // The same with the tension feature (docs/rom.md#tension): the lumps press
-  // with the chain's axial force fax_chain, the sheave feels its bolt force.
+  // with the chain's axial force, the sheave feels its bolt force; with
+  // chordal action the link phase follows the chain's link passing
+  // (docs/rom.md#link-ripple).
   template <class S>
   void derivative_given_tension(const Eigen::Matrix<S, kStates, 1>& x, const S& r1e, const S& phi1, const S& phi2,
-                                const S& fax_chain, Eigen::Matrix<S, kStates, 1>& dxdt) const {
-    const S F1 = lump_friction(phi1, normal_force(fax_chain, S(c_.load1)));
-    const S F2 = lump_friction(phi2, normal_force(fax_chain, S(c_.load2)));
+                                const ChainTension<S>& t, const S& cos_theta,
+                                Eigen::Matrix<S, kStates, 1>& dxdt) const {
+    const S fl = lumps_axial_force(t.F_ax, cos_theta);
+    const S F1 = lump_friction(phi1, normal_force(fl, S(c_.load1)));
+    const S F2 = lump_friction(phi2, normal_force(fl, S(c_.load2)));
     drive_train_rows(x, r1e, S(c_.r2), F1, F2, clamp_force(x), dxdt);
+    if constexpr (L::kPolygon)
+      dxdt(L::kPsi) = per_tau(link_phase_rate(S(c_.psi_per_m), S(c_.r2) * x(L::kW2), S(c_.ten_kL), t.inv_D));
   }
 
   // The rows every feature set shares: pulleys, lumps, axial, polygon phase,
@@ -794,6 +946,15 @@ class CvtRom {
     const T r2 = pitch_radius2(x);
     const T kap = ratio_slope(rho);  // -dr2/drho
     const T dkap = ratio_slope_derivative(rho);
+    // The lumps' axial force carries the link-passing ripple's factor
+    // 1 + A cos(theta) and its phase partial (docs/rom.md#link-ripple).
+    T rip(1), dfl_psi(0);
+    if constexpr (L::kPolygon) {
+      if (rippled()) {
+        rip = T(1) + c_.rip_A * c.ripple_cos;
+        dfl_psi = -(clamp_force(x) * (c_.rip_A * c_.rip_k)) * c.ripple_sin;
+      }
+    }
     // dF_ax/dx: F_ax = K_ax (delta - 2 tan(beta0) rho) while compressed.
     T dfax[N];
     #pragma GCC unroll 16
@@ -825,7 +986,10 @@ class CvtRom {
       Fsum += P.F;
       #pragma GCC unroll 16
       for (int j = 0; j < N; ++j) {
-        const T dn = load[i] * dfax[j];
+        T dn = load[i] * dfax[j];
+        if constexpr (L::kPolygon) {
+          if (rippled()) dn = load[i] * (rip * dfax[j] + (j == L::kPsi ? dfl_psi : T(0)));
+        }
         dF[i][j] = P.dF[0] * dvt[j] + P.dF[2] * dn;
         dR[i][j] = P.dFr[0] * dvt[j] + P.dFr[2] * dn;
       }
@@ -926,8 +1090,10 @@ class CvtRom {
     const S v1 = r1e * x(L::kW1);
     const S vc = r2 * x(L::kW2);
     const S fax = clamp_force(x);
-    const WedgeContact<S> c =
-        wedge_contact(slip_velocity<S>(vc, x(L::kV1), v1), slip_velocity<S>(vc, x(L::kV2), v1), rhod, fax);
+    // The lumps press with the rippled force (docs/rom.md#link-ripple); the
+    // radial balance keeps the bolt force.
+    const WedgeContact<S> c = wedge_contact(slip_velocity<S>(vc, x(L::kV1), v1), slip_velocity<S>(vc, x(L::kV2), v1),
+                                            rhod, lumps_axial_force(fax, ripple_cos(x)));
     derivative_wedge_given(x, r1e, r2, fax, c, dxdt);
   }
 

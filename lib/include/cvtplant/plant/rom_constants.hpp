@@ -17,8 +17,20 @@
 
 namespace cvt {
 
+// The link-passing ripple's set-up constants (feature polygon,
+// docs/rom.md#link-ripple): its relative amplitude A, pi / alpha and the
+// phase phi0 of theta = pi psi / alpha + phi0, and 2 alpha / L, the phase
+// per metre of chain (the phase rate with the tension feature). An empty
+// base without the feature, so the other plants keep their constants' layout.
+template <class T, bool kPolygon>
+struct RomRippleConstants {};
+template <class T>
+struct RomRippleConstants<T, true> {
+  T rip_A{}, rip_k{}, rip_phase{}, psi_per_m{};
+};
+
 template <class T, std::uint32_t F>
-struct RomConstants : RomTensionConstants<T, RomLayout<F>::kTension> {
+struct RomConstants : RomTensionConstants<T, RomLayout<F>::kTension>, RomRippleConstants<T, RomLayout<F>::kPolygon> {
   using L = RomLayout<F>;
   using U = RomUnits<T>;
   using A = RomAcc<T>;
@@ -107,7 +119,15 @@ struct RomConstants : RomTensionConstants<T, RomLayout<F>::kTension> {
     }
     if constexpr (L::kPolygon) {
       // docs/rom.md#polygon: half the angle one link subtends on the driver.
-      alpha = T(dm::asin_setup(p.pitch_m / (2.0 * p.r1_m)));
+      const double alpha_rad = dm::asin_setup(p.pitch_m / (2.0 * p.r1_m));
+      alpha = T(alpha_rad);
+      // docs/rom.md#link-ripple: the loaded-bolt count's fundamental
+      // (2/pi) sin(pi d) cos(theta), theta = pi psi / alpha + pi (1 - d),
+      // d the fractional part of the links in the driver wrap.
+      this->rip_A = T(rom_ripple_amplitude(p));
+      this->rip_k = T(kPi / alpha_rad);
+      this->rip_phase = T(kPi * (1.0 - rom_wrap_links_fraction(p)));
+      this->psi_per_m = T(2.0 * alpha_rad / p.pitch_m);
     }
     if constexpr (L::kWedge) {
       // docs/rom.md#wedging: r2(rho) from chain length conservation, as the

@@ -66,6 +66,24 @@ inline double lump_load_per_axial(double share, double factor, double cos_beta) 
   return 2.0 * share * factor / cos_beta;
 }
 
+// The lumps' axial force with the link-passing ripple, F_ax (1 + A cos(theta)),
+// written F_ax + F_ax (A cos(theta)): theta is the link phase of the
+// loaded-bolt count's fundamental, A its relative amplitude (seed Eq. 5: the
+// axial force is the sum of the bolt forces; docs/rom.md#link-ripple) [N].
+template <class S>
+inline S rippled_axial_force(const S& clamp_force, const S& amplitude, const S& cos_theta) {
+  return clamp_force + clamp_force * (amplitude * cos_theta);
+}
+
+// Rate of the link phase with the chain's tension state, 2 alpha times the
+// links passing per second, (2 alpha / L) v_c kL / (kL + T_s): the slack
+// strand runs at v_c with a pitch of L (1 + T_s / kL) (docs/rom.md#link-ripple)
+// [rad/s]; phase_per_m = 2 alpha / L, inv_D = 1 / (kL + T_s) in kL's unit.
+template <class S>
+inline S link_phase_rate(const S& phase_per_m, const S& v_chain, const S& kL, const S& inv_D) {
+  return (phase_per_m * v_chain) * (kL * inv_D);
+}
+
 // Friction on a lump, F = -phi(v_rel) N (docs/rom.md#contact).
 template <class S>
 inline S lump_friction(const S& phi, const S& normal) {

@@ -14,7 +14,7 @@ struct RomOutputs {
   T geometric_ratio{};    // r2 / r1 (varies with wedging)
   T radius1_m{}, radius2_m{};  // pitch radii (constant unless wedging)
   T slip{};               // (v1 - v_c) / v1 (0 while |v1| < 1e-3 m/s)
-  T clamp_force_N{};      // F_ax acting on the lumps
+  T clamp_force_N{};      // F_ax acting on the lumps (with the link-passing ripple under chordal action)
   T torque_transmitted_Nm{};  // r1e (F1 + F2): friction torque on the driver
   T tau_in_Nm{}, tau_load_Nm{};  // as applied (held pulleys report the holding torque)
   T friction1_N{}, friction2_N{};            // tangential friction on the lumps
@@ -56,6 +56,8 @@ inline RomOutputs<typename Plant::Scalar> rom_outputs(const Plant& plant,
   } else {
     fax = plant.clamp_force(x);
   }
+  // docs/rom.md#link-ripple: the lumps' axial force, rippled under chordal action.
+  fax = plant.lumps_axial_force(fax, plant.ripple_cos(x));
   o.omega1_rad_s = w1;
   o.omega2_rad_s = w2;
   o.radius1_m = plant.pitch_radius1(x);

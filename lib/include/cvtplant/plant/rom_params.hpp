@@ -79,6 +79,12 @@ struct RomParams {
 
   // feature: polygon (docs/rom.md#polygon)
   double pitch_m = seed::kLinkLength_m;  // link length L
+  // docs/rom.md#link-ripple: the lumps' normal load and the reported F_ax
+  // carry F_ax (1 + A cos(pi psi / alpha + phi0)), A = gain (2/pi)
+  // sin(pi d) / n_w, the fundamental of the loaded-bolt count (n_w = r1
+  // theta1 / L links in the driver wrap, d its fractional part). 0 (the
+  // default) leaves F_ax smooth, bit for bit; 1 is rigid bolts.
+  double ripple_gain = 0.0;
 
   // feature: wedging (docs/rom.md#wedging). Needs axial: the bolt force then
   // also depends on the chain's radial position.
@@ -115,6 +121,32 @@ struct RomParams {
 // step per 1 ms frame at 150 rad/s) they were 7 % off without any fault.
 inline double rom_polygon_resolved_speed_rad_s(const RomParams& p, double step_s) {
   return 2.0 * dm::asin_setup(p.pitch_m / (2.0 * p.r1_m)) / 8.0 / step_s;
+}
+
+// docs/rom.md#link-ripple: the links in the driver wrap, n_w = r1 theta1 / L,
+// and the relative amplitude of the lumps' axial-force ripple, the
+// fundamental of the loaded-bolt count that steps between floor(n_w) and
+// floor(n_w) + 1 with duty d = n_w - floor(n_w): A = gain (2/pi) sin(pi d) / n_w.
+inline double rom_wrap_links(const RomParams& p) {
+  return p.r1_m * seed::wrap_angle_driver_rad(p.r1_m, p.r2_m, p.center_distance_m) / p.pitch_m;
+}
+inline double rom_wrap_links_fraction(const RomParams& p) {
+  const double n_w = rom_wrap_links(p);
+  return n_w - static_cast<double>(static_cast<long>(n_w));
+}
+inline double rom_ripple_amplitude(const RomParams& p) {
+  return p.ripple_gain * (2.0 / kPi) * dm::sin(kPi * rom_wrap_links_fraction(p)) / rom_wrap_links(p);
+}
+
+// The link phase's rate at a starting state, or a bound of it [rad/s]: w1,
+// or with the tension feature (2 alpha / L) r2 |w2| kL / (kL + T_s) <= (2
+// alpha / L) r2 |w2| (docs/rom.md#link-ripple), which scene validation holds
+// against rom_polygon_resolved_speed_rad_s.
+inline double rom_polygon_phase_rate_bound_rad_s(const RomParams& p, double omega1_rad_s, double omega2_rad_s,
+                                                 bool tension) {
+  const double w = tension ? 2.0 * dm::asin_setup(p.pitch_m / (2.0 * p.r1_m)) / p.pitch_m * p.r2_m * omega2_rad_s
+                           : omega1_rad_s;
+  return w < 0.0 ? -w : w;
 }
 
 // Plant inputs, held constant over a frame (zero-order hold).

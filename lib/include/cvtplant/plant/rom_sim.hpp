@@ -146,12 +146,14 @@ class RomSimulator {
     if (f != RomFault::none) return roll_back(f);
     if (cfg_.energy_ledger) ledger_.stored_J = plant_.stored_energy(x_);
     ++frames_;
-    // Pulleys within the model's speed range; with chordal action, a driver
-    // slow enough for the step to resolve the link passing (docs/rom.md#polygon).
+    // Pulleys within the model's speed range; with chordal action, a link
+    // phase slow enough for the step to resolve the link passing
+    // (docs/rom.md#polygon; its rate is w1, or with the tension feature the
+    // chain's link passing, docs/rom.md#link-ripple).
     if (abs_of(x_(Plant::Layout::kW1)) > speed_limit_ || abs_of(x_(Plant::Layout::kW2)) > speed_limit_)
       return roll_back(RomFault::speed_out_of_range);
     if constexpr (Plant::Layout::kPolygon) {
-      if (abs_of(x_(Plant::Layout::kW1)) > resolved_speed_) return roll_back(RomFault::step_unresolved);
+      if (abs_of(phase_rate()) > resolved_speed_) return roll_back(RomFault::step_unresolved);
     }
     // docs/rom.md#tension: in fixed point kappa m' v_c^2 saturates beyond the Q
     // range, and what the tension law makes of it means nothing.
@@ -198,6 +200,8 @@ class RomSimulator {
     contact_ = plant_.contact(x_);
     contact_stale_ = false;
   }
+  // The link phase's rate at the current state (docs/rom.md#link-ripple).
+  T phase_rate() const { return plant_.phase_rate(x_, contact_); }
   RomPower<Acc> power_now() const { return plant_.power(x_, contact_); }
   void advance_substep(const T& h, RomWUse use) {
     if (cfg_.method == Method::ros2 || cfg_.method == Method::linear_implicit_euler) {

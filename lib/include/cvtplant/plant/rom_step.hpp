@@ -18,8 +18,15 @@
 //     with wedging only the actuator row F_h stands alone (the bolt force
 //     depends on rho, and the contact on delta);
 //   the core rows (w1, w2, xd1, xd2; with wedging also deltadot, rhodot)
-//     then form a dense 4x4 (6x6) system.
+//     then form a dense 4x4 (6x6) system;
+//   with chordal action and the tension feature the phase row psi' =
+//     (2 alpha / L) v_c kL / (kL + T_s) has entries in w2, x_i, xd_i and
+//     delta (docs/rom.md#link-ripple): with k_x_i substituted it reads
+//     k_psi = f_psi + a J(psi, x_i) f_x_i + a J(psi, delta) k_delta
+//     + sum_c g_c k_c over the core columns, substituted into the core rows
+//     like a kinematic row.
 #include <cstdint>
+#include <type_traits>
 
 #include "cvtplant/integrate/method.hpp"
 #include "cvtplant/integrate/rosenbrock.hpp"
@@ -39,7 +46,9 @@ class RomWSolver {
   static constexpr int kCore[6] = {L::kW1, L::kW2, L::kV1, L::kV2, kWedge ? L::kDeltaDot : 0, kWedge ? L::kRhoDot : 0};
   // Kinematic states (x1, x2, [delta, rho with wedging], [psi]) and the core
   // column (index into kCore) each integrates.
-  static constexpr int kNumKin = 2 + (kWedge ? 2 : 0) + (L::kPolygon ? 1 : 0);
+  // The phase row with the tension feature is not kinematic (see above).
+  static constexpr bool kPhaseRow = L::kPolygon && L::kTension;
+  static constexpr int kNumKin = 2 + (kWedge ? 2 : 0) + (L::kPolygon && !kPhaseRow ? 1 : 0);
   static constexpr int kKin[5] = {L::kX1, L::kX2, kWedge ? L::kDelta : L::kPsi, kWedge ? L::kRho : 0, L::kPsi};
   static constexpr int kKinCore[5] = {2, 3, kWedge ? 4 : 0, 5, 0};
 
@@ -52,6 +61,16 @@ class RomWSolver {
     const T a = a_ref;
     #pragma GCC unroll 8
     for (int p = 0; p < kNumKin; ++p) kin_[p] = a * J(kKin[p], kCore[kKinCore[p]]);
+    if constexpr (kPhaseRow) {
+      // k_psi's coefficients: the core columns, x_i through k_x_i = f_x_i + kin_i k_xd_i.
+      ph_.x[0] = a * J(L::kPsi, L::kX1);
+      ph_.x[1] = a * J(L::kPsi, L::kX2);
+      #pragma GCC unroll 8
+      for (int c = 0; c < kM; ++c) ph_.c[c] = a * J(L::kPsi, kCore[c]);
+      ph_.c[2] += ph_.x[0] * kin_[0];
+      ph_.c[3] += ph_.x[1] * kin_[1];
+      if constexpr (L::kAxial) ph_.d = a * J(L::kPsi, L::kDelta);
+    }
     #pragma GCC unroll 8
     for (int r = 0; r < kM; ++r) {
       #pragma GCC unroll 8
@@ -61,6 +80,11 @@ class RomWSolver {
       for (int p = 0; p < kNumKin; ++p) {
         wcp_[r][p] = -a * J(kCore[r], kKin[p]);
         lu_[r][kKinCore[p]] += wcp_[r][p] * kin_[p];
+      }
+      if constexpr (kPhaseRow) {
+        ph_.w[r] = -a * J(kCore[r], L::kPsi);
+        #pragma GCC unroll 8
+        for (int c = 0; c < kM; ++c) lu_[r][c] += ph_.w[r] * ph_.c[c];
       }
       if constexpr (kWedge) wca_[r] = -a * J(kCore[r], L::kFh);  // the bolt row's actuator force
       else if constexpr (L::kAxial) wca_[r] = -a * J(kCore[r], L::kDelta);  // F_ax = K_ax delta
@@ -93,6 +117,12 @@ class RomWSolver {
       k_axial = f(L::kDelta) - w_d_dd_ * k(L::kDeltaDot);
       k(L::kDelta) = k_axial;
     }
+    // The phase row's part that does not depend on the core unknowns.
+    [[maybe_unused]] T f_psi(0);
+    if constexpr (kPhaseRow) {
+      f_psi = f(L::kPsi) + ph_.x[0] * f(L::kX1) + ph_.x[1] * f(L::kX2);
+      if constexpr (L::kAxial) f_psi += ph_.d * k_axial;
+    }
     T rhs[kM];
     #pragma GCC unroll 8
     for (int r = 0; r < kM; ++r) {
@@ -100,6 +130,7 @@ class RomWSolver {
       #pragma GCC unroll 8
       for (int p = 0; p < kNumKin; ++p) v -= wcp_[r][p] * f(kKin[p]);
       if constexpr (L::kAxial) v -= wca_[r] * k_axial;
+      if constexpr (kPhaseRow) v -= ph_.w[r] * f_psi;
       rhs[r] = v;
     }
     T kc[kM];
@@ -108,6 +139,12 @@ class RomWSolver {
     for (int r = 0; r < kM; ++r) k(kCore[r]) = kc[r];
     #pragma GCC unroll 8
     for (int p = 0; p < kNumKin; ++p) k(kKin[p]) = f(kKin[p]) + kin_[p] * kc[kKinCore[p]];
+    if constexpr (kPhaseRow) {
+      T v = f_psi;
+      #pragma GCC unroll 8
+      for (int c = 0; c < kM; ++c) v += ph_.c[c] * kc[c];
+      k(L::kPsi) = v;
+    }
     return k;
   }
 
@@ -177,6 +214,13 @@ class RomWSolver {
   T wcp_[kM][5];
   T wca_[kM];
   T w_hh_, w_d_dd_, w_dh_, w_dd_, w_dd_piv_;
+  // The phase row with the tension feature (kPhaseRow): its coefficients of
+  // f_x_i, k_delta and the core unknowns, and the core rows' W(r, psi).
+  struct PhaseRow {
+    T x[2], d, c[kM], w[kM];
+  };
+  struct NoPhaseRow {};
+  std::conditional_t<kPhaseRow, PhaseRow, NoPhaseRow> ph_;
   T lu_[kM][kM];
   int perm_[kM];
 };

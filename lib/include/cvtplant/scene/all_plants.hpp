@@ -1,9 +1,10 @@
 #pragma once
 // Every plant of every scalar type, for the host tools (the CLI, the analysis
-// toolkit, the SIL bridge): in double and float 32 feature masks, the 16 of
-// the first four features, the 8 with wedging (which needs axial) and the 8
-// with tension and any of axial, road load and deformation; in q16.16 the 24
-// without wedging. Their code is compiled once, split
+// toolkit, the SIL bridge): in double and float 33 feature masks, the 16 of
+// the first four features, the 8 with wedging (which needs axial), the 8
+// with tension and any of axial, road load and deformation, and tension with
+// polygon (the link-passing ripple's scene); in q16.16 the 25 without
+// wedging. Their code is compiled once, split
 // over several translation units in lib/src/ so a build compiles them in
 // parallel, and linked from the cvtplant::all_plants library; a caller of
 // AllRomPlants<T>::build compiles none of it. Firmware uses a RomPlantSet of
@@ -25,9 +26,9 @@ constexpr bool kHasWedging = std::is_floating_point<T>::value;
 template <class T>
 using Masks = std::conditional_t<kHasWedging<T>,
                                  RomPlantSet<T, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 17, 19, 21, 23,
-                                             25, 27, 29, 31, 32, 33, 34, 35, 36, 37, 38, 39>,
+                                             25, 27, 29, 31, 32, 33, 34, 35, 36, 37, 38, 39, 40>,
                                  RomPlantSet<T, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 32, 33, 34, 35,
-                                             36, 37, 38, 39>>;
+                                             36, 37, 38, 39, 40>>;
 }  // namespace all_plants_detail
 
 template <class T>

@@ -292,6 +292,12 @@ inline SceneIssue validate_scene(const Scene& s) {
   }
   if (s.features & rom_feature::polygon) {
     if (!(fin(p.pitch_m) && p.pitch_m > 0 && p.pitch_m < 1.5 * p.r1_m)) return bad("pitch_m", "must be in (0, 1.5 r1)");
+    // docs/rom.md#link-ripple: F_ax (1 + A cos(theta)) must not press the
+    // lumps with a negative load.
+    if (!(fin(p.ripple_gain) && p.ripple_gain >= 0 && p.ripple_gain <= 10))
+      return bad("ripple_gain", "must be in [0, 10]");
+    if (!(rom_ripple_amplitude(p) < 1.0))
+      return bad("ripple_gain", "the ripple's amplitude A = gain (2/pi) sin(pi d) / n_w must be below 1");
   }
   const RomInitial& x = s.initial;
   if (!(fin(x.omega1_rad_s) && fin(x.omega2_rad_s) && fin(x.x1_m) && fin(x.xd1_m_s) && fin(x.x2_m) &&
@@ -305,11 +311,13 @@ inline SceneIssue validate_scene(const Scene& s) {
   if (SceneIssue i = scene_detail::check_profile(s.tau_load, "tau_load", false, s.frame_s); !i.ok) return i;
   if (SceneIssue i = scene_detail::check_profile(s.clamp, "clamp", true, s.frame_s); !i.ok) return i;
   if (s.substeps < 1 || s.substeps > 10000) return bad("substeps", "must be in 1..10000");
-  // docs/rom.md#polygon: 8 steps per link passage at the starting driver speed
-  // (the watchdog faults step-unresolved when the driver gets faster).
+  // docs/rom.md#polygon: 8 steps per link passage at the starting link phase
+  // rate, w1 or with tension bounded by the chain speed (docs/rom.md#link-ripple;
+  // the watchdog faults step-unresolved when it gets faster).
   if ((s.features & rom_feature::polygon) &&
-      abs_of(x.omega1_rad_s) > rom_polygon_resolved_speed_rad_s(p, s.frame_s / s.substeps))
-    return bad("substeps", "polygon: the step does not resolve the link passing at the starting driver speed "
+      rom_polygon_phase_rate_bound_rad_s(p, x.omega1_rad_s, x.omega2_rad_s, (s.features & rom_feature::tension) != 0u) >
+          rom_polygon_resolved_speed_rad_s(p, s.frame_s / s.substeps))
+    return bad("substeps", "polygon: the step does not resolve the link passing at the starting speed "
                            "(8 steps per link needed): raise substeps");
   if ((s.log & ~rom_log::all) != 0u) return bad("log", "unknown log group");
   if ((s.log & rom_log::tension) != 0u && (s.features & rom_feature::tension) == 0u)
