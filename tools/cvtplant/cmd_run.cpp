@@ -43,9 +43,12 @@ struct Result {
 // CSV is written through a buffered shortest-round-trip writer and its cost
 // is timed apart from the plant's (docs/cli.md#run).
 struct Runner {
-  // The CSV's numeric columns at most: 30 outputs and energies (5 + 3
-  // torques + 6 friction + 4 ratios + 7 energy + 5 tension), the states.
-  static constexpr int kMaxColumns = 30 + cvt::kRomMaxStates;
+  // The CSV's numeric columns at most: time, every signal, the states.
+  static constexpr int kMaxColumns = 1 + cvt::kRomSignalCount + cvt::kRomMaxStates;
+  // The output groups written before the state vector, in column order.
+  static constexpr std::uint32_t kGroupsBeforeStates[] = {cvt::rom_log::base, cvt::rom_log::torques,
+                                                          cvt::rom_log::friction, cvt::rom_log::ratios,
+                                                          cvt::rom_log::energy};
   const cvt::Scene& scene;
   std::FILE* csv;
   int every;
@@ -66,20 +69,18 @@ struct Runner {
     clock::duration output_time{};
     if (csv != nullptr) {
       const auto t0 = clock::now();
-      for (const char* h : {"t", "omega1", "omega2", "F_ax", "slip"}) w.text(h);
-      if (log & cvt::rom_log::torques)
-        for (const char* h : {"tau_in", "tau_load", "torque_transmitted"}) w.text(h);
-      if (log & cvt::rom_log::friction)
-        for (const char* h : {"F1", "F2", "v_rel1", "v_rel2", "stick1", "stick2"}) w.text(h);
-      if (log & cvt::rom_log::ratios)
-        for (const char* h : {"speed_ratio", "geometric_ratio", "r1", "r2"}) w.text(h);
-      if (log & cvt::rom_log::energy)
-        for (const char* h : {"E_stored", "W_in", "W_actuator", "W_load", "W_friction", "W_damping", "E_residual"})
-          w.text(h);
+      w.text("t");
+      // The plant's signals in their groups (rom_signals.hpp); the state
+      // vector sits between the energy and the tension groups.
+      const auto header = [&](std::uint32_t group) {
+        for (const auto& s : cvt::kRomSignals)
+          if (s.log == group) w.text(s.name);
+      };
+      for (std::uint32_t group : kGroupsBeforeStates)
+        if (group == cvt::rom_log::base || (log & group)) header(group);
       if (log & cvt::rom_log::states)
         for (int k = 0; k < n_states; ++k) w.text(cvt::rom_state_name(features, k));
-      if (log & cvt::rom_log::tension)
-        for (const char* h : {"T_tight", "T_slack", "T_centrifugal", "creep_strain", "sheave_on_stop"}) w.text(h);
+      if (log & cvt::rom_log::tension) header(cvt::rom_log::tension);
       w.text("fault");
       w.end_row();
       output_time += clock::now() - t0;
@@ -107,28 +108,18 @@ struct Runner {
         // (docs/cli.md#csv-numbers); the flags as 0/1.
         double row[kMaxColumns];
         int k = 0;
-        for (double v : {t, d(o.omega1_rad_s), d(o.omega2_rad_s), d(o.clamp_force_N), d(o.slip)}) row[k++] = v;
-        if (log & cvt::rom_log::torques)
-          for (double v : {d(o.tau_in_Nm), d(o.tau_load_Nm), d(o.torque_transmitted_Nm)}) row[k++] = v;
-        if (log & cvt::rom_log::friction)
-          for (double v : {d(o.friction1_N), d(o.friction2_N), d(o.v_rel1_m_s), d(o.v_rel2_m_s), o.stick1 ? 1.0 : 0.0,
-                           o.stick2 ? 1.0 : 0.0})
-            row[k++] = v;
-        if (log & cvt::rom_log::ratios)
-          for (double v : {d(o.speed_ratio), d(o.geometric_ratio), d(o.radius1_m), d(o.radius2_m)}) row[k++] = v;
-        if (log & cvt::rom_log::energy)
-          for (double v : {double(e.stored_J), double(e.input_J), double(e.actuator_J), double(e.load_J),
-                           double(e.friction_loss_J), double(e.damping_loss_J), double(e.residual_J())})
-            row[k++] = v;
+        row[k++] = t;
+        const auto values = [&](std::uint32_t group) {
+          for (const auto& s : cvt::kRomSignals)
+            if (s.log == group) row[k++] = cvt::rom_signal(o, e, s.id);
+        };
+        for (std::uint32_t group : kGroupsBeforeStates)
+          if (group == cvt::rom_log::base || (log & group)) values(group);
         if (log & cvt::rom_log::states) {
           sim.state_si(row + k);  // displacements in m whatever the scalar's internal units
           k += n_states;
         }
-        if (log & cvt::rom_log::tension) {
-          for (const T& v : {o.tension_tight_N, o.tension_slack_N, o.centrifugal_tension_N, o.creep_strain})
-            row[k++] = d(v);
-          row[k++] = o.sheave_on_stop ? 1.0 : 0.0;
-        }
+        if (log & cvt::rom_log::tension) values(cvt::rom_log::tension);
         w.nums(row, static_cast<std::size_t>(k));
         w.text(cvt::rom_fault_name(sim.fault()));
         w.end_row();

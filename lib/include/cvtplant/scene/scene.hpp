@@ -9,6 +9,7 @@
 #include "cvtplant/math/detmath.hpp"
 #include "cvtplant/physics/seed.hpp"
 #include "cvtplant/plant/rom_params.hpp"
+#include "cvtplant/plant/rom_signals.hpp"
 
 namespace cvt {
 
@@ -108,17 +109,6 @@ enum class ScalarKind : std::uint8_t { f64, f32, q16_16 };
 inline constexpr const char* scalar_kind_name(ScalarKind s) {
   return s == ScalarKind::f64 ? "double" : s == ScalarKind::f32 ? "float" : "fixed";
 }
-
-// Output groups logged besides t, omega1, omega2, F_ax, slip (docs/rom.md#outputs).
-namespace rom_log {
-inline constexpr std::uint32_t torques = 1u << 0;   // tau_in, tau_load, torque_transmitted
-inline constexpr std::uint32_t friction = 1u << 1;  // F1, F2, v_rel1, v_rel2, stick1, stick2
-inline constexpr std::uint32_t ratios = 1u << 2;    // speed_ratio, geometric_ratio
-inline constexpr std::uint32_t energy = 1u << 3;    // ledger and residual
-inline constexpr std::uint32_t states = 1u << 4;    // raw state vector
-inline constexpr std::uint32_t tension = 1u << 5;   // T_t, T_s, T_c, creep strain, sheave on its stop (feature tension)
-inline constexpr std::uint32_t all = torques | friction | ratios | energy | states | tension;
-}  // namespace rom_log
 
 struct Scene {
   const char* name = "";
