@@ -15,7 +15,7 @@ import sys
 INCLUDE_DIRS = {
     "lib": ["lib/include", "lib/src"],
     "port": ["port/include", "port/loopback/include", "port/posix/include", "port/cortex-m/include"],
-    "hil": ["hil/codegen/include", "hil/bridge/include", "hil/controller/include", "hil/common"],
+    "hil": ["hil/codegen/include", "hil/bridge/include", "hil/controller/include", "hil/sil/include", "hil/common"],
     "analysis": ["analysis/include"],
     "mbd": ["mbd/include"],
     "validation": ["validation/include"],
