@@ -19,6 +19,7 @@ INCLUDE_DIRS = {
     "analysis": ["analysis/include"],
     "mbd": ["mbd/include"],
     "validation": ["validation/include"],
+    "files": ["files/include"],
     "tools": ["tools/cvtplant"],
 }
 # Module -> the modules it may include (besides itself). tests/ and bench/
@@ -26,11 +27,12 @@ INCLUDE_DIRS = {
 ALLOWED = {
     "lib": [],
     "port": ["lib"],
-    "hil": ["lib", "port"],
+    "hil": ["lib", "port", "files"],
     "analysis": ["lib"],
     "mbd": ["lib"],
-    "validation": ["lib", "analysis", "mbd"],
-    "tools": ["lib", "port", "hil", "analysis", "mbd", "validation"],
+    "validation": ["lib", "analysis", "mbd", "files"],
+    "files": [],
+    "tools": ["lib", "port", "hil", "analysis", "mbd", "validation", "files"],
 }
 SOURCE_DIRS = {
     "lib": ["lib"],
@@ -39,12 +41,13 @@ SOURCE_DIRS = {
     "analysis": ["analysis/include", "analysis/src"],
     "mbd": ["mbd/include", "mbd/src"],
     "validation": ["validation/include", "validation/src"],
+    "files": ["files/include", "files/src"],
     "tools": ["tools/cvtplant"],
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 # The command-line parser belongs to the programs (tools/, hil/'s): a library
 # module that included it could only be driven through a subprocess.
-NO_CLI = ("lib", "port", "analysis", "mbd", "validation")
+NO_CLI = ("lib", "port", "analysis", "mbd", "validation", "files")
 CLI_INCLUDE = re.compile(r'^\s*#\s*include\s+<CLI/', re.M)
 
 
