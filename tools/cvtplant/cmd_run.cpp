@@ -19,6 +19,8 @@
 #include "scene_simulator.hpp"
 #include "cvtplant/scene/adaptive_runner.hpp"
 #include "cvtplant/scene/scene_runner.hpp"
+#include "cvtplant/files/interrupt.hpp"
+#include "cvtplant/files/paths.hpp"
 
 namespace {
 
@@ -35,6 +37,9 @@ struct Result {
   // The chain's tension state at the end (feature tension, docs/rom.md#tension).
   double final_T_tight = 0, final_T_slack = 0, final_T_c = 0, final_creep = 0;
   bool final_on_stop = false;
+  // SIGINT or SIGTERM stopped the run after the frame at t_end_s; its row
+  // is written whole (docs/cli.md#interruption).
+  bool interrupted = false;
 };
 
 // The frame loop on the scene's plant (any scalar, any feature set), on the
@@ -89,9 +94,14 @@ struct Runner {
     double sum_w1 = 0, sum_w2 = 0, sum_fax = 0;
     auto d = [](const T& v) { return cvt::to_double(v); };
     const long n_frames = cvt::scene_frames(scene);
-    // No bar when the CSV itself goes to stdout: on a terminal the two would interleave.
-    cvtcli::Progress progress(std::string("run ") + scene.name, csv == stdout ? 0.0 : scene.t_end_s);
+    // No bar when the CSV itself goes to stdout: on a terminal the two would
+    // interleave. The loop polls the interruption flag itself, between rows.
+    cvtcli::Progress progress(std::string("run ") + scene.name, csv == stdout ? 0.0 : scene.t_end_s, "s", stderr,
+                              cvtcli::Progress::Interrupts::polled_by_caller);
     auto on_frame = [&](long i, double t, const auto& sim) {
+      // A signal: this frame is the last one, written and summarised whole.
+      const bool stop = cvt::files::interrupted();
+      r.interrupted = stop;
       const cvt::RomOutputs<T> o = sim.outputs();
       const auto& e = sim.energy();
       if (i > 0) {
@@ -102,7 +112,7 @@ struct Runner {
       }
       r.frames = i;
       r.t_end_s = t;
-      if (csv != nullptr && (i % every == 0 || sim.fault() != cvt::RomFault::none)) {
+      if (csv != nullptr && (i % every == 0 || sim.fault() != cvt::RomFault::none || stop)) {
         const auto t0 = clock::now();
         // The row's numbers gathered first and written in one call
         // (docs/cli.md#csv-numbers); the flags as 0/1.
@@ -125,7 +135,7 @@ struct Runner {
         w.end_row();
         output_time += clock::now() - t0;
       }
-      if (sim.fault() != cvt::RomFault::none || i == n_frames) {
+      if (sim.fault() != cvt::RomFault::none || i == n_frames || stop) {
         r.stored0 = double(e.stored0_J);
         r.stored = double(e.stored_J);
         r.input = double(e.input_J);
@@ -148,7 +158,7 @@ struct Runner {
       }
       if ((i & 4095) == 0) progress.update(t);
       // A failed write (closed pipe, full disk) stops the run; the caller reports it.
-      return cvtcli::output_ok(csv);
+      return cvtcli::output_ok(csv) && !stop;
     };
     const auto t0 = clock::now();
     r.fault = drive(on_frame);
@@ -160,7 +170,8 @@ struct Runner {
     r.wall_s = std::chrono::duration<double>(clock::now() - t0).count();
     r.output_s = std::chrono::duration<double>(output_time).count();
     progress.finish();
-    const double n = static_cast<double>(std::max<long>(1, r.frames));
+    // Means over the frames after t = 0; none when the run stopped at t = 0.
+    const double n = r.frames > 0 ? static_cast<double>(r.frames) : std::nan("");
     r.mean_w1 = sum_w1 / n;
     r.mean_w2 = sum_w2 / n;
     r.mean_fax = sum_fax / n;
@@ -245,9 +256,16 @@ cvtcli::Action register_run(CLI::App& app) {
     if (o.scalar == "double") s.scalar = cvt::ScalarKind::f64;
     if (o.scalar == "float") s.scalar = cvt::ScalarKind::f32;
     if (o.scalar == "fixed") s.scalar = cvt::ScalarKind::q16_16;
-    const cvt::SceneIssue issue = cvt::validate_scene(s);
-    if (!issue.ok) throw cvtcli::UsageError{std::string(issue.field) + ": " + issue.message};
+    cvtcli::check_scene(s, *loaded,
+                        {{"t_end_s", "--t-end", o.t_end_s, sub->count("--t-end") > 0},
+                         {"frame_s", "--dt", o.dt_s, sub->count("--dt") > 0},
+                         {"substeps", "--substeps", static_cast<double>(o.substeps), sub->count("--substeps") > 0}});
     if (o.json && o.csv == "-") throw cvtcli::UsageError{"--json and --csv - both write to stdout; give --csv a file"};
+    // The scene file is read, the CSV written: never the one over the other
+    // (docs/cli.md#files).
+    cvt::files::CommandFiles files;
+    if (loaded->source != "built-in") files.input("--scene", loaded->source);
+    if (sub->count("--csv") > 0) files.output("--csv", o.csv);
     const bool adaptive = o.solver == "adaptive";
     if (adaptive) {
       // The frame stepper's settings have no meaning for the adaptive solver:
@@ -276,9 +294,7 @@ cvtcli::Action register_run(CLI::App& app) {
     if (s.scalar == cvt::ScalarKind::q16_16 && s.frame_s / s.substeps / cvt::RomUnits<cvt::q16_16>::time_s < 32.0 / 65536.0)
       throw cvtcli::UsageError{"--dt: q16.16 cannot represent substeps below 4.8e-7 s to 2 %"};
 
-    std::vector<std::string> inputs;
-    if (loaded->source != "built-in") inputs.push_back(loaded->source);
-    std::FILE* csv = o.csv.empty() ? nullptr : cvtcli::open_output(o.csv, "--csv", inputs);
+    std::FILE* csv = sub->count("--csv") == 0 ? nullptr : cvtcli::open_output(o.csv, "--csv");
     cvt::AdaptiveConfig acfg;
     acfg.rtol = o.rtol;
     acfg.atol = o.atol > 0 ? o.atol : o.rtol;
@@ -311,10 +327,15 @@ cvtcli::Action register_run(CLI::App& app) {
     const double ns_frame = r.wall_s * per_frame;
     const double output_ns = r.output_s * per_frame;
     const double plant_ns = ns_frame - output_ns;
-    const double rel = r.scale > 0 ? r.residual / r.scale : 0.0;
+    // Relative to the energy that flowed; none flowed: not computed.
+    const double rel = r.scale > 0 ? r.residual / r.scale : std::nan("");
+    const char* status = r.interrupted ? "interrupted" : r.fault != cvt::RomFault::none ? "failed" : "ok";
+    char at[64];
+    std::snprintf(at, sizeof at, "t = %.6g s", r.t_end_s);
     if (o.json) {
       nlohmann::json j;
       j["subcommand"] = "run";
+      j["status"] = status;
       j["scene"] = loaded->name;
       j["source"] = loaded->source;
       j["features"] = cvtcli::feature_names(s.features);
@@ -339,8 +360,10 @@ cvtcli::Action register_run(CLI::App& app) {
       if (s.energy_ledger) j["energy"] = {{"stored_initial_J", r.stored0},  {"stored_final_J", r.stored}, {"input_J", r.input},
                      {"actuator_J", r.actuator},       {"load_J", r.load},           {"friction_loss_J", r.friction},
                      {"damping_loss_J", r.damping},    {"residual_J", r.residual},   {"flow_scale_J", r.scale},
-                     {"residual_rel", rel}};
-      j["mean"] = {{"omega1_rad_s", r.mean_w1}, {"omega2_rad_s", r.mean_w2}, {"F_ax_N", r.mean_fax}};
+                     {"residual_rel", cvtcli::json_number(rel)}};
+      j["mean"] = {{"omega1_rad_s", cvtcli::json_number(r.mean_w1)},
+                   {"omega2_rad_s", cvtcli::json_number(r.mean_w2)},
+                   {"F_ax_N", cvtcli::json_number(r.mean_fax)}};
       j["max_abs_slip"] = r.max_abs_slip;
       j["final"] = {{"omega1_rad_s", r.final_w1},
                     {"omega2_rad_s", r.final_w2},
@@ -371,12 +394,14 @@ cvtcli::Action register_run(CLI::App& app) {
         std::fprintf(info, "Scene %s (%s): features %s, %s, %s, dt = %g s x %d substeps\n", loaded->name.c_str(),
                      loaded->source.c_str(), cvtcli::feature_names(s.features).c_str(),
                      cvt::scalar_kind_name(s.scalar), cvt::method_name(s.method), s.frame_s, s.substeps);
-      std::fprintf(info, "  %ld frames to t = %g s, fault: %s\n", r.frames, r.t_end_s, cvt::rom_fault_name(r.fault));
+      std::fprintf(info, "  %ld frames to t = %g s, fault: %s%s\n", r.frames, r.t_end_s, cvt::rom_fault_name(r.fault),
+                   r.interrupted ? " (interrupted)" : "");
       std::fprintf(info, "  final: omega1 = %.4f rad/s, omega2 = %.4f rad/s, F_ax = %.1f N, slip = %.5f\n", r.final_w1,
                   r.final_w2, r.final_fax, r.final_slip);
       if (s.energy_ledger) std::fprintf(info, "  energy: in %.4g J, actuator %.4g J, load %.4g J, friction %.4g J, damping %.4g J, "
-                  "stored %.4g -> %.4g J, residual %.3g J (%.2e of the flows)\n",
-                  r.input, r.actuator, r.load, r.friction, r.damping, r.stored0, r.stored, r.residual, rel);
+                  "stored %.4g -> %.4g J, residual %.3g J (%s of the flows)\n",
+                  r.input, r.actuator, r.load, r.friction, r.damping, r.stored0, r.stored, r.residual,
+                  cvtcli::text_number(rel, "%.2e").c_str());
       if (adaptive)
         std::fprintf(info, "  %ld steps (%ld rejected), %ld right-hand sides, %ld Jacobians, %ld factorisations\n",
                      ad.work.accepted, ad.work.rejected, ad.work.rhs, ad.work.jacobians, ad.work.factorizations);
@@ -386,6 +411,7 @@ cvtcli::Action register_run(CLI::App& app) {
       else
         std::fprintf(info, "  plant %.0f ns/frame (%.3f s wall)\n", plant_ns, r.wall_s);
     }
+    if (r.interrupted) throw cvtcli::Interrupted{at, true};
     if (r.fault != cvt::RomFault::none) {
       char buf[96];
       std::snprintf(buf, sizeof buf, " at t = %g s (frame %ld)", r.t_end_s, r.frames);

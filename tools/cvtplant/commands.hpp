@@ -19,6 +19,14 @@ struct UsageError {
 struct RunError {
   std::string message;
 };
+// Thrown when SIGINT or SIGTERM stopped a run (docs/cli.md#interruption):
+// main() says `interrupted at <at>` on stderr and exits 128 + the signal.
+// `summary_written`: the command printed its own summary with
+// "status": "interrupted"; otherwise main() prints a short one for --json.
+struct Interrupted {
+  std::string at;  // "t = 1.25 s", "120/400 plant runs"
+  bool summary_written = false;
+};
 
 // A subcommand body; returns the process exit code.
 using Action = std::function<int()>;

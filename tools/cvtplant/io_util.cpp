@@ -9,6 +9,8 @@
 #include <iostream>
 
 #include "options.hpp"
+#include "cvtplant/files/paths.hpp"
+#include "cvtplant/files/replace.hpp"
 
 namespace cvtcli {
 
@@ -62,25 +64,31 @@ std::string read_input_file(const std::string& path, std::size_t max_bytes, cons
   return text;
 }
 
-bool same_file(const std::string& a, const std::string& b) {
-  struct stat sa {}, sb {};
-  if (::stat(a.c_str(), &sa) != 0 || ::stat(b.c_str(), &sb) != 0) return false;
-  return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
-}
-
 std::FILE* open_output(const std::string& path, const std::string& flag, const std::vector<std::string>& inputs) {
+  try {
+    cvt::files::CommandFiles files;
+    for (const std::string& in : inputs) files.input("the input file " + cvt::files::shown_path(in), in);
+    files.output(flag, path);
+  } catch (const cvt::files::PathError& e) {
+    throw UsageError{e.what()};
+  }
   if (path == "-") return stdout;
-  if (path.empty()) throw UsageError{flag + ": empty file name"};
-  for (const std::string& in : inputs)
-    if (same_file(path, in))
-      throw UsageError{flag + ": " + quoted(path, 200) + " is the input file " + quoted(in, 200) +
-                       "; writing would destroy it"};
   struct stat st {};
   if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
     throw UsageError{flag + ": " + quoted(path, 200) + " is a directory"};
   std::FILE* f = std::fopen(path.c_str(), "w");
   if (f == nullptr) throw UsageError{flag + ": cannot write " + quoted(path, 200) + ": " + std::strerror(errno)};
   return f;
+}
+
+void write_generated_file(const std::string& path, const std::string& text, const std::string& flag) {
+  try {
+    cvt::files::replace_file(path, text);
+  } catch (const cvt::files::PathError& e) {
+    throw UsageError{flag + ": " + e.what()};
+  } catch (const cvt::files::WriteError& e) {
+    throw RunError{flag + ": " + e.what()};
+  }
 }
 
 namespace {
@@ -119,5 +127,14 @@ void close_output(std::FILE* f) {
 }
 
 void print_json(const nlohmann::json& j) { std::cout << j.dump(2) << '\n'; }
+
+nlohmann::json json_number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+std::string text_number(double v, const char* format) {
+  if (!std::isfinite(v)) return "n/a";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
 
 }  // namespace cvtcli

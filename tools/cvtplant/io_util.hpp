@@ -24,14 +24,18 @@ std::vector<double> parse_list(const std::string& text, std::size_t n, const std
 // is a UsageError naming `what` and the path).
 std::string read_input_file(const std::string& path, std::size_t max_bytes, const std::string& what);
 
-// Whether two paths name the same file (device and inode); false if either
-// does not exist.
-bool same_file(const std::string& a, const std::string& b);
-
-// Opens `path` for writing ("-" = stdout) or throws UsageError naming `flag`.
-// `inputs` are files the command reads: writing over one of them is refused.
+// Opens `path` for writing ("-" = stdout) or throws UsageError naming
+// `flag`: an empty path, one with a control character, a directory, or one
+// that cannot be created. `inputs` are files the command reads: writing over
+// one of them (the same file through any link) is refused. A command with
+// several outputs checks them all first with cvt::files::CommandFiles
+// (docs/cli.md#files).
 std::FILE* open_output(const std::string& path, const std::string& flag = "output",
                        const std::vector<std::string>& inputs = {});
+// A generated file (a parameter file, a header, a script) written whole or
+// not at all (cvt::files::replace_file); UsageError naming `flag` if it
+// cannot be created, RunError if the write fails.
+void write_generated_file(const std::string& path, const std::string& text, const std::string& flag);
 // Whether every write to `f` so far succeeded; on the first failure the
 // system's reason (EPIPE, ENOSPC) is kept for the message of close_output,
 // so call it right after writing. nullptr is fine.
@@ -45,5 +49,11 @@ std::string write_error_reason(int fresh_errno);
 
 // Prints JSON to stdout with a trailing newline.
 void print_json(const nlohmann::json& j);
+
+// What was not computed (docs/cli.md#nulls): a value that is not finite is
+// `null` in JSON and "n/a" in text, never a number made up in its place.
+nlohmann::json json_number(double v);
+// printf-formatted with `format` (one conversion of a double), or "n/a".
+std::string text_number(double v, const char* format);
 
 }  // namespace cvtcli

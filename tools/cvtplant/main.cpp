@@ -9,6 +9,9 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "cvtplant/files/interrupt.hpp"
+#include "cvtplant/files/paths.hpp"
+#include "cvtplant/files/replace.hpp"
 #include "io_util.hpp"
 #include "options.hpp"
 #include "registry.hpp"
@@ -84,6 +87,9 @@ int main(int argc, char** argv) {
   // A reader that closes the pipe early (`| head`) makes writes fail with
   // EPIPE, which the run reports, instead of killing the process silently.
   std::signal(SIGPIPE, SIG_IGN);
+  // SIGINT and SIGTERM stop a long run between rows, with its summary
+  // (docs/cli.md#interruption); a second one ends the process at once.
+  cvt::files::catch_interrupts();
 
   CLI::App app{"cvtplant: CVT plant models, scenes and nonlinear analysis (offline tools)"};
   app.require_subcommand(1);
@@ -125,9 +131,11 @@ int main(int argc, char** argv) {
   for (auto& [sub, act] : actions) {
     if (!sub->parsed()) continue;
     std::string where = "cvtplant " + sub->get_name();
+    const CLI::App* leaf = sub;
     for (const CLI::App* s = sub; !s->get_subcommands().empty();) {
       s = s->get_subcommands().front();
       where += " " + s->get_name();
+      leaf = s;
     }
     int code = 1;
     try {
@@ -137,6 +145,24 @@ int main(int argc, char** argv) {
       code = 2;
     } catch (const cvtcli::RunError& e) {
       std::fprintf(stderr, "%s: failed: %s\n", where.c_str(), e.message.c_str());
+      code = 1;
+    } catch (const cvtcli::Interrupted& e) {
+      // Whole rows are written and flushed; the summary says "interrupted".
+      if (!e.summary_written) {
+        const CLI::Option* json = leaf->get_option_no_throw("--json");
+        if (json != nullptr && json->count() > 0)
+          cvtcli::print_json({{"subcommand", where.substr(std::string("cvtplant ").size())},
+                              {"status", "interrupted"},
+                              {"interrupted_at", e.at}});
+      }
+      std::fprintf(stderr, "%s: interrupted at %s (%s)\n", where.c_str(), e.at.c_str(),
+                   cvt::files::interrupt_signal_name());
+      code = cvt::files::interrupted_exit_status();
+    } catch (const cvt::files::PathError& e) {
+      std::fprintf(stderr, "%s: error: %s\n", where.c_str(), e.what());
+      code = 2;
+    } catch (const cvt::files::WriteError& e) {
+      std::fprintf(stderr, "%s: failed: %s\n", where.c_str(), e.what());
       code = 1;
     } catch (const std::bad_alloc&) {
       std::fprintf(stderr, "%s: failed: out of memory (lower the run's size, see --max-memory-mb)\n", where.c_str());

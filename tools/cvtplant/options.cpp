@@ -1,6 +1,7 @@
 #include "options.hpp"
 
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -136,6 +137,12 @@ std::string fmt_count(double n) {
   char buf[32];
   std::snprintf(buf, sizeof buf, n < 1e7 ? "%.0f" : "%.3g", n);
   return buf;
+}
+
+std::string exact_number(double v) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
 }
 
 std::string quoted(const std::string& text, std::size_t max_chars) {

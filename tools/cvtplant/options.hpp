@@ -61,6 +61,11 @@ std::uint64_t memory_cap_bytes(const Caps& caps);
 // A count for a message: "10000", "1e+08".
 std::string fmt_count(double n);
 
+// A value for a message, exactly: the shortest text that reads back to the
+// same double ("99.99999", "0.1", "1e-300"), so a refused value is never
+// shown rounded into the range it violates.
+std::string exact_number(double v);
+
 // 'text' for a message, cut to `max_chars` with the full length said, so a
 // 50 MB cell is never echoed back.
 std::string quoted(const std::string& text, std::size_t max_chars = 40);

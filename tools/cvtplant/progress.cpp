@@ -7,6 +7,9 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "commands.hpp"
+#include "cvtplant/files/interrupt.hpp"
+
 namespace cvtcli {
 
 namespace {
@@ -27,9 +30,21 @@ bool Progress::wanted(std::FILE* out) {
   return isatty(fileno(out)) == 1;
 }
 
-Progress::Progress(std::string label, double total, std::string unit, std::FILE* out)
+Progress::Progress(std::string label, double total, std::string unit, std::FILE* out, Interrupts interrupts)
     : label_(std::move(label)), unit_(std::move(unit)), total_(total), out_(out),
-      enabled_(total > 0 && wanted(out)), start_(clock::now()), last_(start_) {}
+      enabled_(total > 0 && wanted(out)), stop_at_update_(interrupts == Interrupts::stop_at_update),
+      owner_(std::this_thread::get_id()), start_(clock::now()), last_(start_) {}
+
+std::string Progress::position(double done, double total, const std::string& unit) {
+  char buf[96];
+  if (unit == "s")
+    std::snprintf(buf, sizeof buf, "t = %.6g s", done);
+  else if (!unit.empty())
+    std::snprintf(buf, sizeof buf, "%.0f/%.0f %s", done, total, unit.c_str());
+  else
+    std::snprintf(buf, sizeof buf, "%.0f %% of the run", total > 0 ? 100.0 * std::clamp(done / total, 0.0, 1.0) : 0.0);
+  return buf;
+}
 
 Progress::~Progress() { finish(); }
 
@@ -51,6 +66,11 @@ std::string Progress::format(const std::string& label, double done, double total
 }
 
 void Progress::update(double done) {
+  // Other threads (a sweep's workers) cannot unwind the command: only its own.
+  if (stop_at_update_ && cvt::files::interrupted() && std::this_thread::get_id() == owner_) {
+    finish();
+    throw Interrupted{position(done, total_, unit_)};
+  }
   if (!enabled_) return;
   const std::lock_guard<std::mutex> lock(mutex_);
   const auto now = clock::now();

@@ -7,20 +7,29 @@
 // may give jobs a pseudo-terminal), it prints nothing at all, so piped and
 // redirected runs carry data only. update() may be called from several
 // threads (sweeps).
+//
+// It is also where a long command notices SIGINT or SIGTERM
+// (docs/cli.md#interruption): update() on the thread that made the
+// Progress throws cvtcli::Interrupted naming how far the job got, whether
+// or not a bar is drawn. A command that writes rows polls the flag itself
+// between rows and makes its Progress with Interrupts::polled_by_caller.
 #include <chrono>
 #include <cstdio>
 #include <mutex>
 #include <string>
+#include <thread>
 
 namespace cvtcli {
 
 class Progress {
  public:
+  enum class Interrupts { stop_at_update, polled_by_caller };
   // label: what runs (e.g. "mbd case 1"); total: the job's size in `unit`,
   // the unit of update(): "s" for simulated seconds (shown as "t 1.2/10 s"),
   // a count's name such as "points" (shown as "12/40 points"), or "" for
   // the percentage alone.
-  Progress(std::string label, double total, std::string unit = "s", std::FILE* out = stderr);
+  Progress(std::string label, double total, std::string unit = "s", std::FILE* out = stderr,
+           Interrupts interrupts = Interrupts::stop_at_update);
   ~Progress();
   Progress(const Progress&) = delete;
   Progress& operator=(const Progress&) = delete;
@@ -30,6 +39,10 @@ class Progress {
   // Clears the line (also done by the destructor).
   void finish();
   bool enabled() const { return enabled_; }
+
+  // How far a job got, for `interrupted at ...`: "t = 1.25 s",
+  // "120/400 plant runs", "42 % of the run".
+  static std::string position(double done, double total, const std::string& unit);
 
   // The line update() would draw (for tests): label, bar, percent, the
   // amount done, wall time and time left.
@@ -45,6 +58,8 @@ class Progress {
   std::mutex mutex_;
   std::FILE* out_;
   bool enabled_;
+  bool stop_at_update_;
+  std::thread::id owner_;
   bool drawn_ = false;
   clock::time_point start_, last_;
 };

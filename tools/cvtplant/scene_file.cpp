@@ -405,6 +405,34 @@ std::shared_ptr<LoadedScene> resolve_scene(const std::string& name_or_path) {
   return load_scene_file(name_or_path);
 }
 
+void check_scene(const cvt::Scene& s, const LoadedScene& loaded, const std::vector<SceneFlag>& flags) {
+  const cvt::SceneIssue issue = cvt::validate_scene(s);
+  if (issue.ok) return;
+  const std::string field = issue.field;
+  const auto flag_of = [&](const std::string& f) -> const SceneFlag* {
+    for (const SceneFlag& g : flags)
+      if (g.given && f == g.field) return &g;
+    return nullptr;
+  };
+  // The frame must fit in the run: whichever of the two the user set is named.
+  if (field == "frame_s" && s.frame_s > s.t_end_s && (flag_of("frame_s") || flag_of("t_end_s"))) {
+    const SceneFlag* dt = flag_of("frame_s");
+    const SceneFlag* te = flag_of("t_end_s");
+    const std::string dt_text = exact_number(s.frame_s) + " s";
+    const std::string te_text = exact_number(s.t_end_s) + " s";
+    if (dt != nullptr)
+      throw UsageError{std::string(dt->flag) + ": " + dt_text + " is above " +
+                       (te != nullptr ? std::string(te->flag) + " " + te_text
+                                      : "the scene's t_end_s " + te_text + " (scene " + loaded.name + ")") +
+                       ": a frame must fit in the run"};
+    throw UsageError{std::string(te->flag) + ": " + te_text + " is below the scene's frame_s " + dt_text + " (scene " +
+                     loaded.name + "): a frame must fit in the run"};
+  }
+  if (const SceneFlag* g = flag_of(field))
+    throw UsageError{std::string(g->flag) + " " + exact_number(g->value) + ": " + issue.message};
+  throw UsageError{"scene " + loaded.name + ": " + field + ": " + issue.message};
+}
+
 std::string feature_names(std::uint32_t features) {
   std::string s;
   for (const FeatureName& f : kFeatureNames)

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "cvtplant/scene/scene.hpp"
 
@@ -32,6 +33,18 @@ void apply_params_file(const std::string& path, cvt::Scene& s);
 
 // A built-in scene name or a path to a scene file.
 std::shared_ptr<LoadedScene> resolve_scene(const std::string& name_or_path);
+
+// A scene field that a flag of the command sets (run's --dt sets frame_s).
+struct SceneFlag {
+  const char* field;  // as cvt::validate_scene names it
+  const char* flag;   // "--dt"
+  double value;       // the value given (shown in full in a refusal)
+  bool given;         // whether the flag was given
+};
+// cvt::validate_scene on a scene some flags changed; throws UsageError. A
+// refusal of a field a given flag set names the flag and its value
+// (`--dt: 0.1 s is above --t-end 0.05 s`), any other names the scene.
+void check_scene(const cvt::Scene& s, const LoadedScene& loaded, const std::vector<SceneFlag>& flags);
 
 // "axial,road_load" for a feature mask ("none" if 0).
 std::string feature_names(std::uint32_t features);
