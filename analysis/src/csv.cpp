@@ -106,6 +106,9 @@ Header read_header(LineReader& in, const std::string& path) {
   std::string line;
   while (in.getline(line)) {
     ++h.line_no;
+    // A UTF-8 byte-order mark (spreadsheets write one) is no part of the
+    // first name.
+    if (h.line_no == 1 && line.compare(0, 3, "\xEF\xBB\xBF") == 0) line.erase(0, 3);
     if (skip_line(line)) continue;
     h.sep = detect_separator(line);
     h.names = split(line, h.sep);
@@ -121,25 +124,30 @@ std::vector<std::string> read_csv_header(const std::string& path) {
   return read_header(in, path).names;
 }
 
-CsvColumn read_csv_column(const std::string& path, const std::string& column, std::size_t max_bytes) {
+std::vector<CsvColumn> read_csv_columns(const std::string& path, const ColumnPicker& pick, std::size_t max_bytes) {
   LineReader in(path, max_bytes);
   const Header h = read_header(in, path);
-  std::size_t col = h.names.size();
-  for (std::size_t i = 0; i < h.names.size(); ++i)
-    if (h.names[i] == column) {
-      col = i;
-      break;
+  const std::vector<std::string> wanted = pick(h.names);
+  std::vector<std::size_t> index;
+  std::vector<CsvColumn> out;
+  for (const std::string& column : wanted) {
+    std::size_t col = h.names.size();
+    for (std::size_t i = 0; i < h.names.size(); ++i)
+      if (h.names[i] == column) {
+        col = i;
+        break;
+      }
+    if (col == h.names.size()) {
+      std::string have;
+      for (const auto& n : h.names) have += (have.empty() ? "" : ", ") + n;
+      if (have.size() > 400) have = have.substr(0, 400) + "...";
+      for (char& c : have)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+      throw InputError(path + ": no column " + shown(column) + " (columns: " + have + ")");
     }
-  if (col == h.names.size()) {
-    std::string have;
-    for (const auto& n : h.names) have += (have.empty() ? "" : ", ") + n;
-    if (have.size() > 400) have = have.substr(0, 400) + "...";
-    for (char& c : have)
-      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-    throw InputError(path + ": no column " + shown(column) + " (columns: " + have + ")");
+    index.push_back(col);
+    out.push_back(CsvColumn{column, {}});
   }
-  CsvColumn out;
-  out.name = column;
   std::string line;
   long line_no = h.line_no;
   while (in.getline(line)) {
@@ -147,23 +155,35 @@ CsvColumn read_csv_column(const std::string& path, const std::string& column, st
     if (skip_line(line)) continue;
     const std::vector<std::string> cells = split(line, h.sep);
     const std::string where = path + ":" + std::to_string(line_no);
-    if (cells.size() <= col)
-      throw InputError(where + ": row has " + std::to_string(cells.size()) + " cells, column '" + column +
-                       "' is cell " + std::to_string(col + 1));
-    const std::string& cell = cells[col];
-    const char* s = cell.c_str();
-    char* end = nullptr;
-    errno = 0;
-    const double v = std::strtod(s, &end);
-    if (cell.empty() || end == s || *end != '\0')
-      throw InputError(where + ": column '" + column + "': " + shown(cell) + " is not a number");
-    if (std::isnan(v)) throw InputError(where + ": column '" + column + "': NaN is not allowed");
-    if (!std::isfinite(v) || errno == ERANGE)
-      throw InputError(where + ": column '" + column + "': " + shown(cell) + " is not a finite number");
-    out.values.push_back(v);
+    // A row of another width than the header's is not the table the header
+    // describes: refused, longer as well as shorter.
+    if (cells.size() != h.names.size())
+      throw InputError(where + ": row has " + std::to_string(cells.size()) + " cells, the header has " +
+                       std::to_string(h.names.size()));
+    for (std::size_t k = 0; k < index.size(); ++k) {
+      const std::string& column = out[k].name;
+      const std::string& cell = cells[index[k]];
+      const char* s = cell.c_str();
+      char* end = nullptr;
+      errno = 0;
+      const double v = std::strtod(s, &end);
+      if (cell.empty() || end == s || *end != '\0')
+        throw InputError(where + ": column '" + column + "': " + shown(cell) + " is not a number");
+      if (std::isnan(v)) throw InputError(where + ": column '" + column + "': NaN is not allowed");
+      if (!std::isfinite(v) || errno == ERANGE)
+        throw InputError(where + ": column '" + column + "': " + shown(cell) + " is not a finite number");
+      out[k].values.push_back(v);
+    }
   }
-  if (out.values.empty()) throw InputError(path + ": column '" + column + "' has no data rows");
+  for (const CsvColumn& c : out)
+    if (c.values.empty()) throw InputError(path + ": column '" + c.name + "' has no data rows");
   return out;
+}
+
+CsvColumn read_csv_column(const std::string& path, const std::string& column, std::size_t max_bytes) {
+  return read_csv_columns(
+             path, [&](const std::vector<std::string>&) { return std::vector<std::string>{column}; }, max_bytes)
+      .front();
 }
 
 }  // namespace cvt::analysis

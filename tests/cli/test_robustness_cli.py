@@ -281,7 +281,7 @@ class SceneFiles(Case):
             os.symlink(p, os.path.join(d, "link.csv"))
             os.link(p, os.path.join(d, "hard.csv"))
             for out in (p, os.path.join(d, "link.csv"), os.path.join(d, "hard.csv"), os.path.join(d, ".", "s.toml")):
-                self.usage_error(["run", "--scene", p, "--csv", out], r"--csv: '.*' is the input file '.*'; writing would destroy it")
+                self.usage_error(["run", "--scene", p, "--csv", out], r"--csv: '.*' is the input of --scene \('.*'\); writing it would destroy that input")
             with open(p) as f:
                 self.assertEqual(f.read(), text)
             self.usage_error(["run", "--scene", "seed-case1", "--csv", d], r"--csv: '.*' is a directory")
@@ -289,7 +289,7 @@ class SceneFiles(Case):
     def test_merge_out_over_a_shard(self):
         with tempfile.TemporaryDirectory() as d:
             shard = write(d, "s0.csv", "# placeholder\n")
-            self.usage_error(["analyze", "merge", shard, "--out", shard], r"--out: '.*' is the input file", "analyze merge")
+            self.usage_error(["analyze", "merge", shard, "--out", shard], r"--out: '.*' is the input of the shards", "analyze merge")
             with open(shard) as f:
                 self.assertEqual(f.read(), "# placeholder\n")
 

@@ -47,6 +47,11 @@ class Validate(unittest.TestCase):
         for q in ("omega1", "omega2", "ratio omega1/omega2", "F_ax1 (mean)", "torque on the driver", "driver slip"):
             self.assertIn(q, names)
         for e in s["errors"]:
+            # The ratio is not defined while the driven pulley stands (below
+            # 1 rad/s in 0.2 s of seed-case1): null, not a number (docs/cli.md#nulls).
+            if e["quantity"].startswith("ratio"):
+                self.assertIsNone(e["rel_rms"], e)
+                continue
             self.assertIsNotNone(e["rel_rms"], e)
             self.assertGreaterEqual(e["rel_rms"], 0.0)
         self.assertTrue(os.path.getsize(s["png"]) > 10000)

@@ -7,7 +7,8 @@
 //  - a refusal is one line, names the input ("<fuzz>:LINE: ..." or "--scene:
 //    ...") and never echoes more than a bounded part of the input;
 //  - an accepted scene passes validate_scene again and has a positive,
-//    bounded frame count and finite profile bounds.
+//    bounded frame count and finite profile bounds, and its name follows the
+//    one rule for names that become file names (docs/cli.md#names).
 #include <cstddef>
 #include <cstdint>
 #include <exception>
@@ -15,6 +16,7 @@
 
 #include "commands.hpp"
 #include "scene_file.hpp"
+#include "cvtplant/files/names.hpp"
 #include "cvtplant/scene/scene.hpp"
 #include "cvtplant/scene/scene_runner.hpp"
 
@@ -35,6 +37,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* in, size_t n) {
     const auto loaded = cvtcli::parse_scene_text(text, "<fuzz>");
     const cvt::Scene& s = loaded->scene;
     if (!cvt::validate_scene(s).ok) violated();
+    if (!cvt::files::name_problem(loaded->name).empty()) violated();
     const long frames = cvt::scene_frames(s);
     if (frames < 1 || frames > 1000000000000L) violated();
     for (const cvt::Profile* p : {&s.tau_in, &s.tau_load, &s.clamp}) {

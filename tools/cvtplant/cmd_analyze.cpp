@@ -28,6 +28,9 @@
 #include "io_util.hpp"
 #include "options.hpp"
 #include "progress.hpp"
+#include "cvtplant/files/interrupt.hpp"
+#include "cvtplant/files/paths.hpp"
+#include "cvtplant/files/replace.hpp"
 #include "model_resolve.hpp"
 #include "registry.hpp"
 #include "scene_file.hpp"
@@ -335,6 +338,12 @@ cvtcli::Action register_analyze(CLI::App& app) {
       }
       const bool is_png = png != 0;
       tools.push_back({c, [a, o, path, pixels, is_png] {
+                         if (is_png) {
+                           // The PNG never over the CSV it is drawn from (docs/cli.md#files).
+                           cvt::files::CommandFiles io;
+                           io.input("--csv", a->csv);
+                           io.output("--png", *path);
+                         }
                          const auto x = load(*a, 100);
                          const int tau = pick_tau(*a, x);
                          const int w = a->theiler >= 0 ? a->theiler : 0;
@@ -454,7 +463,7 @@ cvtcli::Action register_analyze(CLI::App& app) {
                                               cvtcli::fmt_count(rows_n) + " rows of " + std::to_string(s.dim) + " states");
                        std::vector<std::string> inputs;
                        if (!has_model(a->scene)) inputs.push_back(a->scene);
-                       std::FILE* f = cvtcli::open_output(a->out, "--out", inputs);
+                       std::FILE* f = cvtcli::open_output(a->out, "--out", inputs, "--scene");
                        std::vector<double> rows;
                        {
                          // No bar when the CSV goes to stdout: on a terminal the two would interleave.
@@ -552,10 +561,16 @@ cvtcli::Action register_analyze(CLI::App& app) {
                        sp.benettin.max_steps = a->caps.max_steps;
                        std::vector<std::string> inputs;
                        if (!has_model(a->scene)) inputs.push_back(a->scene);
-                       std::FILE* f = cvtcli::open_output(a->out, "--out", inputs);
+                       std::FILE* f = cvtcli::open_output(a->out, "--out", inputs, "--scene");
                        cvtcli::Progress progress("sweep " + s.name, points, "points");
-                       const auto pts = run_sweep(sp, static_cast<int>(si), static_cast<int>(sn), a->jobs,
-                                                  [&](long done, long) { progress.update(static_cast<double>(done)); });
+                       std::vector<SweepPoint> pts;
+                       {
+                         // The workers cannot stop early and the CSV is written at the
+                         // end: a signal ends the process at once (docs/cli.md#interruption).
+                         cvt::files::ImmediateInterrupts immediate;
+                         pts = run_sweep(sp, static_cast<int>(si), static_cast<int>(sn), a->jobs,
+                                         [&](long done, long) { progress.update(static_cast<double>(done)); });
+                       }
                        progress.finish();
                        write_sweep_csv(f, sp, s.dim, pts);
                        cvtcli::close_output(f);
@@ -577,7 +592,7 @@ cvtcli::Action register_analyze(CLI::App& app) {
     c->add_option("shards", *shards, "shard CSV files")->required();
     c->add_option("--out", *out, "merged CSV ('-' = stdout)");
     tools.push_back({c, [shards, out] {
-                       std::FILE* f = cvtcli::open_output(*out, "--out", *shards);
+                       std::FILE* f = cvtcli::open_output(*out, "--out", *shards, "the shards");
                        merge_sweep_csv(*shards, f);
                        cvtcli::close_output(f);
                        return 0;
@@ -607,6 +622,12 @@ cvtcli::Action register_analyze(CLI::App& app) {
                        std::vector<std::string> files;
                        if (a->csv.empty() && sweep->empty() && scene->empty())
                          throw cvtcli::UsageError{"give --csv/--column, --scene or --sweep"};
+                       // The figures' data files and scripts have fixed names in
+                       // --out-dir: an input there could be one of them.
+                       cvtcli::refuse_input_in_dir("--csv", a->csv, "--out-dir", *dir);
+                       cvtcli::refuse_input_in_dir("--sweep", *sweep, "--out-dir", *dir);
+                       if (!scene->empty() && !has_model(*scene) && cvt::find_builtin_scene(scene->c_str()) == nullptr)
+                         cvtcli::refuse_input_in_dir("--scene", *scene, "--out-dir", *dir);
                        if (!a->csv.empty()) {
                          if (a->column.empty()) throw cvtcli::UsageError{"--column is required with --csv"};
                          CsvColumn col = read_column(a->csv, a->column, *caps);
@@ -706,7 +727,12 @@ cvtcli::Action register_analyze(CLI::App& app) {
                        progress.update(0);
                        const RomSeries run = rom_scene_series(scene->scene, scene->name, names, a->t_end);
                        progress.update(1);
-                       ensure_dir(a->out_dir);
+                       {
+                         cvt::files::CommandFiles io;
+                         if (scene->source != "built-in") io.input("--scene", scene->source);
+                         io.output("--out-dir", a->out_dir + "/summary.json");
+                       }
+                       cvt::files::make_directories(a->out_dir, "--out-dir");
                        if (run.fault != "none")
                          throw cvtcli::RunError{"the plant faulted (" + run.fault + ") in scene " + a->scene};
                        Section4Options so;
@@ -735,12 +761,7 @@ cvtcli::Action register_analyze(CLI::App& app) {
                        }
                        progress.finish();
                        const std::string summary = a->out_dir + "/summary.json";
-                       {
-                         std::FILE* f = cvtcli::open_output(summary, "--out-dir");
-                         const std::string text = out.dump(2) + "\n";
-                         std::fwrite(text.data(), 1, text.size(), f);
-                         cvtcli::close_output(f);
-                       }
+                       cvtcli::write_generated_file(summary, out.dump(2) + "\n", "--out-dir");
                        if (a->json) {
                          cvtcli::print_json(out);
                          return 0;
@@ -791,27 +812,47 @@ cvtcli::Action register_analyze(CLI::App& app) {
                          wins.emplace_back(t0, t1);
                          from = comma + 1;
                        }
+                       // One pass over the input (a pipe is read once): the time
+                       // column is chosen from the header as it is read.
                        std::string tcol = a->time_column;
-                       if (tcol.empty()) {
-                         const auto head = read_csv_header(a->csv);
-                         tcol = std::find(head.begin(), head.end(), "t_s") != head.end() ? "t_s" : "t";
+                       std::vector<CsvColumn> cols;
+                       try {
+                         cols = read_csv_columns(
+                             a->csv,
+                             [&](const std::vector<std::string>& head) {
+                               if (tcol.empty())
+                                 tcol = std::find(head.begin(), head.end(), "t_s") != head.end() ? "t_s" : "t";
+                               return std::vector<std::string>{tcol, a->column};
+                             },
+                             cvtcli::memory_cap_bytes(a->caps));
+                       } catch (const LimitError& e) {
+                         throw cvtcli::UsageError{std::string(e.what()) + "; raise it with --max-memory-mb"};
                        }
-                       const CsvColumn t = read_column(a->csv, tcol, a->caps);
-                       const CsvColumn y = read_column(a->csv, a->column, a->caps);
+                       const CsvColumn& t = cols[0];
+                       const CsvColumn& y = cols[1];
                        const std::string unit = a->unit.empty() ? "-" : a->unit;
+                       // Every window is computed before anything is printed: a
+                       // refusal leaves stdout empty.
+                       std::vector<RippleWindow> results;
+                       for (const auto& [t0, t1] : wins) results.push_back(ripple_window(t.values, y.values, t0, t1, a->o));
                        json rows = json::array();
                        if (!a->json)
                          std::printf("%-12s %8s %12s %10s %10s %10s %10s\n", "window_s", "samples", "mean", "std",
                                      "p-p", "peak_Hz", "line_amp");
-                       for (const auto& [t0, t1] : wins) {
-                         const RippleWindow r = ripple_window(t.values, y.values, t0, t1, a->o);
+                       for (std::size_t k = 0; k < wins.size(); ++k) {
+                         const RippleWindow& r = results[k];
                          rows.push_back({{"t_begin_s", r.t_begin_s}, {"t_end_s", r.t_end_s}, {"samples", r.samples},
-                                         {"mean", r.mean}, {"std", r.std}, {"peak_to_peak", r.peak_to_peak},
-                                         {"line_amplitude", r.line_amplitude}, {"unit", unit},
-                                         {"peak_Hz", r.peak_hz}});
+                                         {"mean", cvtcli::json_number(r.mean)}, {"std", cvtcli::json_number(r.std)},
+                                         {"peak_to_peak", cvtcli::json_number(r.peak_to_peak)},
+                                         {"line_amplitude", cvtcli::json_number(r.line_amplitude)}, {"unit", unit},
+                                         {"peak_Hz", cvtcli::json_number(r.peak_hz)}});
                          if (!a->json)
-                           std::printf("%5g-%-6g %8zu %12.6g %10.4g %10.4g %10.4g %10.4g\n", t0, t1, r.samples, r.mean,
-                                       r.std, r.peak_to_peak, r.peak_hz, r.line_amplitude);
+                           std::printf("%5g-%-6g %8zu %12s %10s %10s %10s %10s\n", wins[k].first, wins[k].second,
+                                       r.samples, cvtcli::text_number(r.mean, "%.6g").c_str(),
+                                       cvtcli::text_number(r.std, "%.4g").c_str(),
+                                       cvtcli::text_number(r.peak_to_peak, "%.4g").c_str(),
+                                       cvtcli::text_number(r.peak_hz, "%.4g").c_str(),
+                                       cvtcli::text_number(r.line_amplitude, "%.4g").c_str());
                        }
                        if (a->json)
                          cvtcli::print_json({{"column", a->column}, {"time_column", tcol}, {"min_Hz", a->o.min_hz},

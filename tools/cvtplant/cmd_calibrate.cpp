@@ -15,7 +15,9 @@
 #include "progress.hpp"
 #include "registry.hpp"
 #include "scene_file.hpp"
+#include "options.hpp"
 #include "validation_options.hpp"
+#include "cvtplant/files/paths.hpp"
 #include "cvtplant/validation/calibration.hpp"
 #include "cvtplant/validation/scene_check.hpp"
 
@@ -53,15 +55,30 @@ std::string joined(const std::vector<std::string>& v) {
   return s;
 }
 
+// One argument as a POSIX shell reads it back: as it is when it holds only
+// safe characters, else in single quotes. (Control characters never get
+// here: paths with them are refused, docs/cli.md#files.)
+std::string shell_word(const std::string& a) {
+  bool plain = !a.empty();
+  for (const char c : a)
+    plain = plain && ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                      std::string("-_./,:+=@%").find(c) != std::string::npos);
+  if (plain) return a;
+  std::string q = "'";
+  for (const char c : a) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
 // The command that reproduces a fit (the parameter file's header).
 std::string command_line(const Options& o) {
   std::ostringstream s;
-  s << "cvtplant calibrate --scene " << o.scenes << " --fit " << o.fit;
-  if (!o.start.empty()) s << " --start " << o.start;
+  s << "cvtplant calibrate --scene " << shell_word(o.scenes) << " --fit " << shell_word(o.fit);
+  if (!o.start.empty()) s << " --start " << shell_word(o.start);
   if (o.ref.sheaves != "scene") s << " --sheaves " << o.ref.sheaves;
-  if (o.ref.t_end_s > 0) s << " --t-end " << o.ref.t_end_s;
-  s << " --rtol " << o.ref.rtol << " --every " << o.every << " --max-evals " << o.max_evals << " --out " << o.out;
-  if (!o.header.empty()) s << " --header " << o.header;
+  if (o.ref.t_end_s > 0) s << " --t-end " << exact_number(o.ref.t_end_s);
+  s << " --rtol " << exact_number(o.ref.rtol) << " --every " << o.every << " --max-evals " << o.max_evals;
+  if (!o.out.empty()) s << " --out " << shell_word(o.out);
+  if (!o.header.empty()) s << " --header " << shell_word(o.header);
   if (o.function != "apply") s << " --function " << o.function;
   return s.str();
 }
@@ -82,7 +99,7 @@ nlohmann::json to_json(const val::CalibrationResult& r, const std::vector<std::s
   j["cost_end"] = r.cost_end;
   j["rms_residual_start"] = r.rms_residual_start();
   j["rms_residual_end"] = r.rms_residual_end();
-  j["reference_cpu_s"] = ref_cpu_s;
+  j["reference_cpu_s"] = ref_cpu_s;  // of the runs made now (from the cache: none)
   nlohmann::json params = nlohmann::json::array();
   for (const auto& p : r.params)
     params.push_back({{"name", p.name},
@@ -123,12 +140,6 @@ void print_text(const val::CalibrationResult& r, const Options& o) {
                   100.0 * c.rel_rms_start[q], 100.0 * c.rel_rms_end[q]);
 }
 
-void write_text_file(const std::string& path, const std::string& text) {
-  std::FILE* f = open_output(path);
-  std::fputs(text.c_str(), f);
-  close_output(f);
-}
-
 Action register_calibrate(CLI::App& app) {
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -145,35 +156,43 @@ Action register_calibrate(CLI::App& app) {
                   "The header's function name, cvt::calibrated::NAME(RomParams&) (one header per fitted set)")
       ->capture_default_str();
   sub->add_option("--start", opt->start, "Start from a parameter file's values (default: the scenes' own)");
-  sub->add_option("--t-end", opt->ref.t_end_s, "Shorten every run to this simulated time [s]");
-  sub->add_option("--every", opt->every, "Fit on every N-th sample, [1, 1000]")->capture_default_str();
-  sub->add_option("--max-evals", opt->max_evals, "Cap on plant evaluations of the optimiser, [1, 100000]")
-      ->capture_default_str();
+  add_int(sub, "--every", opt->every, 1, 1000, "Fit on every N-th sample (default 10)");
+  add_int(sub, "--max-evals", opt->max_evals, 1, 100000,
+          "Cap on plant evaluations of the fit, all counted: the start, the optimiser's and those at the result "
+          "(default 400; at least the fitted parameters + 2)");
   sub->add_flag("--json", opt->json, "Print the result as JSON");
   return [opt, sub]() -> int {
     return guarded([&] {
       const Options& o = *opt;
-      if (sub->count("--t-end") > 0 && !(o.ref.t_end_s > 0 && o.ref.t_end_s <= 3600))
-        throw UsageError{"--t-end: must be in (0, 3600] s"};
       const val::RunSettings settings = reference_settings(sub, o.ref);
-      if (!(o.every >= 1 && o.every <= 1000)) throw UsageError{"--every: outside [1, 1000]"};
-      if (!(o.max_evals >= 1 && o.max_evals <= 100000)) throw UsageError{"--max-evals: outside [1, 100000]"};
       if (!val::is_cpp_identifier(o.function))
-        throw UsageError{"--function: not a C++ identifier: '" + o.function + "'"};
+        throw UsageError{"--function: " + quoted(o.function) +
+                         " is not a name for a C++ function (an identifier of at most 64 characters, not a keyword "
+                         "nor reserved)"};
       const std::vector<std::string> fit = split(o.fit);
       const auto names = split(o.scenes);
       if (names.empty()) throw UsageError{"--scene: no scene"};
       std::vector<std::shared_ptr<LoadedScene>> loaded;
+      for (const auto& n : names) loaded.push_back(resolve_scene(n));
+      // Every file read and written, before any work: the parameter file
+      // and the header never over a scene, the start file or each other
+      // (docs/cli.md#files).
+      cvt::files::CommandFiles files;
+      for (const auto& l : loaded)
+        if (l->source != "built-in") files.input("--scene", l->source);
+      if (sub->count("--start") > 0) files.input("--start", o.start);
+      if (sub->count("--out") > 0) files.output("--out", o.out);
+      if (sub->count("--header") > 0) files.output("--header", o.header);
       std::vector<cvt::Scene> plant_scenes;
-      for (const auto& n : names) {
-        auto l = resolve_scene(n);
+      for (std::size_t i = 0; i < loaded.size(); ++i) {
+        const auto& l = loaded[i];
         std::string why;
         if (!val::reference_setup(l->scene, settings, why))
-          throw UsageError{"--scene " + n + ": the reference cannot run " + why};
-        loaded.push_back(l);
+          throw UsageError{"--scene " + names[i] + ": the reference cannot run " + why};
         // --start moves the plant's parameters only; the reference runs the scene.
         plant_scenes.push_back(l->scene);
         if (!o.start.empty()) apply_params_file(o.start, plant_scenes.back());
+        reference_step_cap(l->scene, settings, o.ref, l->name);
       }
       // The fitted values are shared by every scene: they start from the first's.
       std::unique_ptr<val::Calibration> cal;
@@ -182,6 +201,11 @@ Action register_calibrate(CLI::App& app) {
       } catch (const val::InputError& e) {
         throw UsageError{std::string("--fit: ") + e.what()};
       }
+      if (o.max_evals < cal->min_evaluations())
+        throw UsageError{"--max-evals: " + std::to_string(o.max_evals) + " is below the " +
+                         std::to_string(cal->min_evaluations()) + " plant evaluations a fit of " +
+                         std::to_string(fit.size()) +
+                         " parameter(s) needs at the least (the start, and the residuals and the Jacobian at the result)"};
       prepare_out_dir(o.ref);
       double ref_cpu = 0;
       for (std::size_t i = 0; i < loaded.size(); ++i) {
@@ -190,11 +214,13 @@ Action register_calibrate(CLI::App& app) {
         std::string why;
         auto setup = *val::reference_setup(loaded[i]->scene, settings, why);
         setup.run.t_end_s = plant.t_end_s;
+        setup.run.max_steps = reference_step_cap(loaded[i]->scene, settings, o.ref, loaded[i]->name);
         Progress progress("calibrate " + loaded[i]->name + ": reference", setup.run.t_end_s);
         const val::ReferenceRun rr = val::reference_run(setup.params, setup.run, settings.cache_dir,
                                                         [&](double t) { progress.update(t); });
         progress.finish();
-        ref_cpu += rr.cpu_s;
+        report_cache_problem("calibrate", rr);
+        if (!rr.from_cache) ref_cpu += rr.cpu_s;
         cal->add_case(loaded[i]->name, plant, rr, o.every);
       }
       val::CalibrationResult r;
@@ -202,8 +228,10 @@ Action register_calibrate(CLI::App& app) {
         Progress progress("calibrate", o.max_evals, "plant runs");
         r = cal->run(o.max_evals, [&](long evals) { progress.update(static_cast<double>(evals)); });
       }
-      if (!o.out.empty()) write_text_file(o.out, val::params_file_text(r, command_line(o), o.scenes));
-      if (!o.header.empty()) write_text_file(o.header, val::header_text(r, command_line(o), o.function));
+      if (sub->count("--out") > 0)
+        write_generated_file(o.out, val::params_file_text(r, command_line(o), o.scenes), "--out");
+      if (sub->count("--header") > 0)
+        write_generated_file(o.header, val::header_text(r, command_line(o), o.function), "--header");
       if (o.json)
         print_json(to_json(r, names, o, ref_cpu));
       else

@@ -13,8 +13,13 @@
 
 #include "commands.hpp"
 #include "io_util.hpp"
+#include "options.hpp"
 #include "progress.hpp"
+#include "reference_cost.hpp"
 #include "registry.hpp"
+#include "cvtplant/files/interrupt.hpp"
+#include "cvtplant/files/paths.hpp"
+#include "cvtplant/scene/scene.hpp"
 
 namespace cvtcli::mbdcli {
 
@@ -23,9 +28,11 @@ namespace {
 using cvt::mbd::Method;
 using cvt::mbd::SheaveMode;
 
+// A value that must lie in [lo, hi]: the refusal shows it exactly as read
+// (99.99999 is not shown as 100), with the range and the unit.
 void require_range(double v, double lo, double hi, const std::string& what, const std::string& unit) {
   if (!(v >= lo && v <= hi))
-    throw UsageError{what + ": " + num(v) + " is outside [" + num(lo) + ", " + num(hi) + "]" +
+    throw UsageError{what + ": " + exact_number(v) + " is outside [" + num(lo) + ", " + num(hi) + "]" +
                      (unit.empty() ? "" : " " + unit)};
 }
 
@@ -41,31 +48,37 @@ cvt::mbd::TimeProfile parse_profile(const std::string& text, const std::string& 
       const std::size_t comma = text.find(',', start);
       const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
       const std::size_t colon = item.find(':');
-      if (colon == std::string::npos) throw UsageError{what + ": '" + item + "' is not t:value"};
+      if (colon == std::string::npos) throw UsageError{what + ": " + quoted(item) + " is not t:value"};
       const double t = parse_finite(item.substr(0, colon), what + " (time)");
       const double f = parse_finite(item.substr(colon + 1), what + " (value)");
-      if (t < 0) throw UsageError{what + ": times must be >= 0 s"};
-      if (!p.points.empty() && t <= p.points.back().first) throw UsageError{what + ": times must increase"};
+      if (t < 0) throw UsageError{what + ": time " + exact_number(t) + " s: times must be >= 0 s"};
+      if (!p.points.empty() && t <= p.points.back().first)
+        throw UsageError{what + ": time " + exact_number(t) + " s: times must increase"};
       p.points.emplace_back(t, f);
       if (comma == std::string::npos) break;
       start = comma + 1;
+      if (p.points.size() > 10000) throw UsageError{what + ": more than 10000 points"};
     }
   }
-  if (p.points.size() > 10000) throw UsageError{what + ": more than 10000 points"};
   for (const auto& pt : p.points) require_range(pt.second, lo, hi, what, unit);
   return p;
 }
 
+// The clamping and the torques: the plant's ranges, one per quantity
+// (cvt::input_limits, docs/rom.md#scene-validation); the reference's
+// clamped sheaves need at least 100 N (a seated chain).
 cvt::mbd::TimeProfile parse_clamp(const std::string& text, const std::string& what) {
-  return parse_profile(text, what, 100.0, 1e5, "N");
+  return parse_profile(text, what, 100.0, cvt::input_limits::kClamp_N, "N");
 }
 
 cvt::mbd::TimeProfile parse_torque(const std::string& text, const std::string& what) {
-  return parse_profile(text, what, -1000.0, 1000.0, "N m");
+  return parse_profile(text, what, -cvt::input_limits::kTorque_Nm, cvt::input_limits::kTorque_Nm, "N m");
 }
 
-// docs/rom.md#road-load, the plant's ranges (scene validation) with caps on work.
+// docs/rom.md#road-load: the plant's ranges (cvt::input_limits), the same in
+// a scene file and here.
 cvt::mbd::RoadLoad parse_road_load(const std::string& text) {
+  namespace lim = cvt::input_limits;
   const std::vector<double> v = parse_list(text, 0, "--road-load");
   if (v.size() < 3 || v.size() > 4) throw UsageError{"--road-load: expected T0,cv,ca or T0,cv,ca,w_eps"};
   cvt::mbd::RoadLoad r;
@@ -73,11 +86,10 @@ cvt::mbd::RoadLoad parse_road_load(const std::string& text) {
   r.cv_Nms_rad = v[1];
   r.ca_Nms2_rad2 = v[2];
   if (v.size() == 4) r.w_eps_rad_s = v[3];
-  require_range(r.T0_Nm, 0.0, 1000.0, "--road-load T0", "N m");
-  require_range(r.cv_Nms_rad, 0.0, 100.0, "--road-load cv", "N m s/rad");
-  require_range(r.ca_Nms2_rad2, 0.0, 10.0, "--road-load ca", "N m s^2/rad^2");
-  if (!(r.w_eps_rad_s > 0 && r.w_eps_rad_s <= 1000.0))
-    throw UsageError{"--road-load w_eps: " + num(r.w_eps_rad_s) + " is outside (0, 1000] rad/s"};
+  require_range(r.T0_Nm, 0.0, lim::kRoadT0_Nm, "--road-load T0", "N m");
+  require_range(r.cv_Nms_rad, 0.0, lim::kRoadCv_Nms_rad, "--road-load cv", "N m s/rad");
+  require_range(r.ca_Nms2_rad2, 0.0, lim::kRoadCa_Nms2_rad2, "--road-load ca", "N m s^2/rad^2");
+  require_range(r.w_eps_rad_s, lim::kRoadWepsMin_rad_s, lim::kRoadWepsMax_rad_s, "--road-load w_eps", "rad/s");
   return r;
 }
 
@@ -86,7 +98,7 @@ cvt::mbd::StartAtSpeed parse_omega0(const std::string& text) {
   const std::vector<double> v = parse_list(text, 2, "--omega0");
   for (int j = 0; j < 2; ++j)
     if (!(v[j] > 0 && v[j] <= 1000.0))
-      throw UsageError{"--omega0: " + num(v[j]) + " is outside (0, 1000] rad/s"};
+      throw UsageError{"--omega0: " + exact_number(v[j]) + " is outside (0, 1000] rad/s"};
   cvt::mbd::StartAtSpeed s;
   s.active = true;
   s.omega1_rad_s = v[0];
@@ -94,12 +106,11 @@ cvt::mbd::StartAtSpeed parse_omega0(const std::string& text) {
   return s;
 }
 
-nlohmann::json jnum(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 }  // namespace
 
 void add_model_options(CLI::App* sub, ModelOptions& o) {
-  sub->add_option("--t-end", o.t_end_s, "Simulated time after the release [s], (0, 3600]")->capture_default_str();
+  add_real(sub, "--t-end", o.t_end_s, {1e-6, 3600}, "Simulated time after the release [s] (default 10)");
   sub->add_option("--sheaves", o.sheaves, "fixed (the seed's pulleys) | clamped (movable sheave per pulley, axial force given)")
       ->capture_default_str()
       ->check(CLI::IsMember({"fixed", "clamped"}));
@@ -110,48 +121,51 @@ void add_model_options(CLI::App* sub, ModelOptions& o) {
   sub->add_option("--method", o.method, "bdf (CVODE BDF + KLU) | rk4 (fixed step, the seed's method)")
       ->capture_default_str()
       ->check(CLI::IsMember({"bdf", "rk4"}));
-  o.dt_opt = sub->add_option("--dt", o.dt_s, "RK4 step [s], [1e-8, 1e-4] (default 1e-6)");
-  o.rtol_opt = sub->add_option("--rtol", o.rtol, "BDF relative tolerance, [1e-11, 1e-3] (default 5e-7)");
-  sub->add_option("--links", o.links, "Number of links N, [36, 53]; sets the pretension")->capture_default_str();
-  sub->add_option("--sample", o.sample_s, "Output interval [s], [1e-6, t-end]")->capture_default_str();
+  o.dt_opt = add_real(sub, "--dt", o.dt_s, {1e-8, 1e-4}, "RK4 step [s] (default 1e-6)");
+  o.rtol_opt = add_real(sub, "--rtol", o.rtol, {1e-11, 1e-3}, "BDF relative tolerance (default 5e-7)");
+  add_int(sub, "--links", o.links, 36, 53, "Number of links N; sets the pretension (default 44)");
+  add_real(sub, "--sample", o.sample_s, {1e-6, 3600}, "Output interval [s], at most --t-end (default 1e-3)");
   sub->add_option("--tau-in", o.tau_in,
                   "Driver torque from the release: T, or a profile t:T,t:T,... [s:N m], T in [-1000, 1000]")
       ->capture_default_str();
   sub->add_option("--tau-load", o.tau_load, "Load torque on the driven pulley, same syntax")->capture_default_str();
   o.road_opt = sub->add_option("--road-load", o.road_load,
                                "Road load on the driven pulley, T0,cv,ca[,w_eps]: T0 tanh(w2/w_eps) + cv w2 + ca w2|w2| "
-                               "added to --tau-load [N m, N m s/rad, N m s^2/rad^2, rad/s]");
+                               "added to --tau-load [N m, N m s/rad, N m s^2/rad^2, rad/s]; T0 in [0, 1000], cv in "
+                               "[0, 100], ca in [0, 10], w_eps in [0.001, 1000] (default 1)");
   o.omega0_opt = sub->add_option("--omega0", o.omega0,
                                  "Start at speed W1,W2 [rad/s], each in (0, 1000]: spin-up and hold before the "
                                  "release (docs/mbd.md#start-at-speed)");
-  sub->add_option("--ledger-tol", o.ledger_tol, "Stop when the energy ledger is off by more (relative), [1e-12, 1]")->capture_default_str();
-  sub->add_option("--max-steps", o.max_steps, "Cap on integrator steps (work), [1, 1e12]")->capture_default_str();
-  sub->add_option("--max-rows", o.max_rows, "Cap on output rows (memory and disk), [1, 1e9]")->capture_default_str();
+  add_real(sub, "--ledger-tol", o.ledger_tol, {1e-12, 1},
+           "Stop when the energy ledger is off by more (relative) (default 1e-6)");
+  o.max_steps_opt = add_int(sub, "--max-steps", o.max_steps, 1, 1000000000000LL,
+                            "Cap on integrator steps (default: 20x the run's estimate, at most 1e8; docs/cli.md#caps)");
+  add_int(sub, "--max-rows", o.max_rows, 1, 1000000000, "Cap on output rows (memory and disk) (default 2e6)");
+}
+
+long long step_cap(const ModelOptions& o) {
+  const ReferenceWork w = o.method == "rk4" ? rk4_work(o.t_end_s, o.dt_s) : bdf_work(o.t_end_s, o.rtol);
+  const bool given = o.max_steps_opt != nullptr && o.max_steps_opt->count() > 0;
+  return cvtcli::step_cap(w, given, static_cast<double>(o.max_steps));
 }
 
 void validate(const ModelOptions& o) {
-  require_range(o.t_end_s, 1e-6, 3600.0, "--t-end", "s");
-  require_range(o.sample_s, 1e-6, o.t_end_s, "--sample", "s (and at most --t-end)");
-  require_range(o.links, 36, 53, "--links", "");
+  // Each flag's own range is checked as it is parsed (options.hpp); here
+  // the ranges that depend on another flag, and the combinations.
+  if (o.sample_s > o.t_end_s)
+    throw UsageError{"--sample: " + exact_number(o.sample_s) + " s is above --t-end " + exact_number(o.t_end_s) + " s"};
   parse_torque(o.tau_in, "--tau-in");
   parse_torque(o.tau_load, "--tau-load");
   if (o.road_opt != nullptr && o.road_opt->count() > 0) parse_road_load(o.road_load);
   if (o.omega0_opt != nullptr && o.omega0_opt->count() > 0) parse_omega0(o.omega0);
-  require_range(o.ledger_tol, 1e-12, 1.0, "--ledger-tol", "");
-  require_range(static_cast<double>(o.max_steps), 1, 1e12, "--max-steps", "");
-  require_range(static_cast<double>(o.max_rows), 1, 1e9, "--max-rows", "");
   if (o.method == "bdf") {
     if (o.dt_opt != nullptr && o.dt_opt->count() > 0) throw UsageError{"--dt applies to --method rk4 only"};
-    require_range(o.rtol, 1e-11, 1e-3, "--rtol", "");
   } else {
     if (o.rtol_opt != nullptr && o.rtol_opt->count() > 0) throw UsageError{"--rtol applies to --method bdf only"};
-    require_range(o.dt_s, 1e-8, 1e-4, "--dt", "s");
-    if (o.sample_s < o.dt_s) throw UsageError{"--sample: must be at least --dt"};
-    const double steps = std::round(o.t_end_s / o.dt_s);
-    if (steps > static_cast<double>(o.max_steps))
-      throw UsageError{"--t-end/--dt: " + num(steps) + " RK4 steps exceed --max-steps " +
-                       std::to_string(o.max_steps) + " (raise --max-steps)"};
+    if (o.sample_s < o.dt_s)
+      throw UsageError{"--sample: " + exact_number(o.sample_s) + " s is below --dt " + exact_number(o.dt_s) + " s"};
   }
+  step_cap(o);
   const double rows = std::ceil(o.t_end_s / o.sample_s - 1e-9) + 1.0;
   if (rows > static_cast<double>(o.max_rows))
     throw UsageError{"--t-end/--sample: " + num(rows) + " output rows exceed --max-rows " +
@@ -189,7 +203,7 @@ cvt::mbd::RunOptions run_options_for(const ModelOptions& o) {
   r.rtol = o.rtol;
   r.dt_s = o.dt_s;
   r.sample_s = o.sample_s;
-  r.max_steps = o.max_steps;
+  r.max_steps = step_cap(o);
   r.ledger_tol = o.ledger_tol;
   return r;
 }
@@ -246,7 +260,9 @@ RunOutcome run_case(const ModelOptions& o, int friction_case, std::FILE* csv, st
   const bool clamped = params.sheaves == SheaveMode::clamped;
   RunOutcome out;
   cvt::mbd::SummaryBuilder summary(o.t_end_s);
-  Progress progress(label, o.t_end_s);
+  const double window_start_s = o.t_end_s - summary.result().window_s;
+  // The rows are whole: the flag is polled after each sample is written.
+  Progress progress(label, o.t_end_s, "s", stderr, Progress::Interrupts::polled_by_caller);
   double energy0 = std::numeric_limits<double>::quiet_NaN();
   double next_links_t = 0.0;
   if (csv != nullptr) write_csv_header(csv, clamped);
@@ -254,6 +270,7 @@ RunOutcome run_case(const ModelOptions& o, int friction_case, std::FILE* csv, st
   auto on_sample = [&](const cvt::mbd::Sample& s, const cvt::mbd::ChainModel& m, const double* y) {
     if (std::isnan(energy0)) energy0 = s.E_kin_J + s.E_el_J;
     summary.add(s);
+    if (s.t_s >= window_start_s - 1e-12) ++out.window_samples;
     if (csv != nullptr) {
       const double res = std::fabs(cvt::mbd::ledger_residual_J(s, energy0)) /
                          cvt::mbd::ledger_scale_J(s, energy0, m.tolerance_energy_J());
@@ -267,14 +284,25 @@ RunOutcome run_case(const ModelOptions& o, int friction_case, std::FILE* csv, st
       out.picture = m.link_states(y);
       out.picture_t_s = s.t_s;
     }
+    // A signal: the run ends after this sample, its rows whole. The
+    // reference reports the stop as a failure at this time with its
+    // counters; run_case tells the two apart.
+    if (cvt::files::interrupted()) throw cvt::mbd::RunFailure(s.t_s, "interrupted");
+    // A closed pipe or a full disk ends the run at the first failed write.
+    if (!output_ok(csv) || !output_ok(links_csv))
+      throw cvt::mbd::RunFailure(s.t_s, "writing the output failed: " + write_error_reason(0));
   };
   try {
     out.stats = cvt::mbd::simulate(params, ropt, on_sample, [&](double t) { progress.update(t); });
   } catch (const cvt::mbd::RunFailure& e) {
     out.stats = e.stats;
-    out.failed = true;
-    out.fail_t_s = e.t_s;
-    out.fail_quantity = e.quantity;
+    if (cvt::files::interrupted()) {
+      out.interrupted = true;
+    } else {
+      out.failed = true;
+      out.fail_t_s = e.t_s;
+      out.fail_quantity = e.quantity;
+    }
   } catch (const std::invalid_argument& e) {
     throw UsageError{e.what()};
   }
@@ -312,12 +340,20 @@ nlohmann::json start_json(const ModelOptions& o, const cvt::mbd::RunStats& st) {
   return j;
 }
 
+// The status of a run: "ok", "failed" (with the failure) or "interrupted".
+const char* status_of(const RunOutcome& r) { return r.interrupted ? "interrupted" : r.failed ? "failed" : "ok"; }
+
 nlohmann::json summary_json(const ModelOptions& o, int friction_case, const RunOutcome& r) {
   const auto& st = r.stats;
   const auto& s = r.summary;
+  // What a run that made no sample (it failed while settling or at its
+  // first sample) has not computed is null, never the zeros it starts from
+  // (docs/cli.md#nulls); the ripple needs two samples in the window.
+  const bool sampled = st.samples > 0;
+  const auto measured = [&](double v) { return sampled ? json_number(v) : nlohmann::json(nullptr); };
   nlohmann::json j;
   j["subcommand"] = "mbd";
-  j["status"] = r.failed ? "failed" : "ok";
+  j["status"] = status_of(r);
   if (r.failed) j["failure"] = {{"t_s", r.fail_t_s}, {"quantity", r.fail_quantity}};
   j["case"] = friction_case;
   j["friction"] = friction_case == 1 ? "case1" : "case2";
@@ -327,7 +363,7 @@ nlohmann::json summary_json(const ModelOptions& o, int friction_case, const RunO
   j["sheaves"] = o.sheaves;
   j["links"] = o.links;
   j["t_end_s"] = o.t_end_s;
-  j["t_reached_s"] = s.last.t_s;
+  j["t_reached_s"] = measured(s.last.t_s);
   j["sample_s"] = o.sample_s;
   j["samples"] = st.samples;
   j["wall_s"] = st.wall_s;
@@ -342,61 +378,74 @@ nlohmann::json summary_json(const ModelOptions& o, int friction_case, const RunO
   j["newton_fails"] = st.newton_fails;
   j["states"] = st.states;
   j["jacobian_nnz"] = st.jacobian_nnz;
-  j["energy_residual_rel"] = st.ledger_residual_max_rel;
+  // The largest residual over the samples, or the one that stopped the run
+  // at its first sample.
+  j["energy_residual_rel"] =
+      sampled || st.ledger_residual_max_rel > 0 ? json_number(st.ledger_residual_max_rel) : nlohmann::json(nullptr);
   const double e_end = s.last.E_kin_J + s.last.E_el_J;
-  j["energy"] = {{"E0_J", st.energy0_J},
-                 {"E_end_J", e_end},
-                 {"W_in_J", s.last.W_in_J},
-                 {"W_load_J", s.last.W_load_J},
-                 {"D_friction_J", s.last.D_friction_J},
-                 {"D_damping_J", s.last.D_damping_J},
-                 {"W_clamp_J", s.last.W_clamp_J},
-                 {"residual_J", cvt::mbd::ledger_residual_J(s.last, st.energy0_J)}};
-  j["omega1_end_rad_s"] = s.omega_end_rad_s[0];
-  j["omega2_end_rad_s"] = s.omega_end_rad_s[1];
-  j["ratio_mean"] = jnum(s.ratio_mean);
-  j["ratio_end"] = jnum(s.ratio_end);
-  j["ratio_last_window"] = jnum(s.ratio_window);
+  j["energy"] = {{"E0_J", measured(st.energy0_J)},
+                 {"E_end_J", measured(e_end)},
+                 {"W_in_J", measured(s.last.W_in_J)},
+                 {"W_load_J", measured(s.last.W_load_J)},
+                 {"D_friction_J", measured(s.last.D_friction_J)},
+                 {"D_damping_J", measured(s.last.D_damping_J)},
+                 {"W_clamp_J", measured(s.last.W_clamp_J)},
+                 {"residual_J", measured(cvt::mbd::ledger_residual_J(s.last, st.energy0_J))}};
+  j["omega1_end_rad_s"] = measured(s.omega_end_rad_s[0]);
+  j["omega2_end_rad_s"] = measured(s.omega_end_rad_s[1]);
+  j["ratio_mean"] = measured(s.ratio_mean);
+  j["ratio_end"] = measured(s.ratio_end);
+  j["ratio_last_window"] = measured(s.ratio_window);
   j["window_s"] = s.window_s;
-  j["F_ax1_mean_N"] = jnum(s.F_ax_mean_N[0]);
-  j["F_ax2_mean_N"] = jnum(s.F_ax_mean_N[1]);
-  j["F_ax1_ripple_N"] = jnum(s.F_ax1_ripple_N);
-  j["F_ax1_last_window_mean_N"] = jnum(s.F_ax_window_mean_N[0]);
-  j["F_ax2_last_window_mean_N"] = jnum(s.F_ax_window_mean_N[1]);
-  j["slip1_last_window_m_s"] = jnum(s.slip_window_mean_m_s[0]);
-  j["slip2_last_window_m_s"] = jnum(s.slip_window_mean_m_s[1]);
-  j["T_tight_end_N"] = jnum(s.tension_tight_end_N);
-  j["T_slack_end_N"] = jnum(s.tension_slack_end_N);
-  j["wrap_links_end"] = {s.wrap_links_end[0], s.wrap_links_end[1]};
+  j["F_ax1_mean_N"] = measured(s.F_ax_mean_N[0]);
+  j["F_ax2_mean_N"] = measured(s.F_ax_mean_N[1]);
+  j["F_ax1_ripple_N"] = r.window_samples >= 2 ? json_number(s.F_ax1_ripple_N) : nlohmann::json(nullptr);
+  j["F_ax1_last_window_mean_N"] = measured(s.F_ax_window_mean_N[0]);
+  j["F_ax2_last_window_mean_N"] = measured(s.F_ax_window_mean_N[1]);
+  j["slip1_last_window_m_s"] = measured(s.slip_window_mean_m_s[0]);
+  j["slip2_last_window_m_s"] = measured(s.slip_window_mean_m_s[1]);
+  j["T_tight_end_N"] = measured(s.tension_tight_end_N);
+  j["T_slack_end_N"] = measured(s.tension_slack_end_N);
+  j["wrap_links_end"] =
+      sampled ? nlohmann::json{s.wrap_links_end[0], s.wrap_links_end[1]} : nlohmann::json(nullptr);
   j["start_at_speed"] = start_json(o, st);
   return j;
 }
 
-void print_text(const ModelOptions& o, int c, const RunOutcome& r) {
+void print_text(std::FILE* out, const ModelOptions& o, int c, const RunOutcome& r) {
   const auto& st = r.stats;
   const auto& s = r.summary;
-  std::printf("Multibody chain CVT, seed %s, %d links, %s sheaves, %s\n", case_label(c).c_str(), o.links,
-              o.sheaves.c_str(), method_label(o).c_str());
-  std::printf("  t = %g s: omega1 %.3f rad/s, omega2 %.3f rad/s, ratio %.4f (mean over the run %.4f)\n", s.last.t_s,
-              s.omega_end_rad_s[0], s.omega_end_rad_s[1], s.ratio_end, s.ratio_mean);
-  std::printf("  driver axial force: mean %.1f N, last %.3g s: mean %.1f N, peak to peak %.1f N\n",
-              s.F_ax_mean_N[0], s.window_s, s.F_ax_window_mean_N[0], s.F_ax1_ripple_N);
-  std::printf("  strands at the end: tight %.1f N, slack %.1f N; links in the wraps %d, %d\n", s.tension_tight_end_N,
-              s.tension_slack_end_N, s.wrap_links_end[0], s.wrap_links_end[1]);
+  const bool sampled = st.samples > 0;
+  const auto v = [&](double x, const char* f) { return text_number(sampled ? x : std::nan(""), f); };
+  std::fprintf(out, "Multibody chain CVT, seed %s, %d links, %s sheaves, %s%s\n", case_label(c).c_str(), o.links,
+               o.sheaves.c_str(), method_label(o).c_str(), r.interrupted ? " (interrupted)" : "");
+  std::fprintf(out, "  t = %s s: omega1 %s rad/s, omega2 %s rad/s, ratio %s (mean over the run %s)\n",
+               v(s.last.t_s, "%g").c_str(), v(s.omega_end_rad_s[0], "%.3f").c_str(),
+               v(s.omega_end_rad_s[1], "%.3f").c_str(), v(s.ratio_end, "%.4f").c_str(), v(s.ratio_mean, "%.4f").c_str());
+  std::fprintf(out, "  driver axial force: mean %s N, last %.3g s: mean %s N, peak to peak %s N\n",
+               v(s.F_ax_mean_N[0], "%.1f").c_str(), s.window_s, v(s.F_ax_window_mean_N[0], "%.1f").c_str(),
+               text_number(r.window_samples >= 2 ? s.F_ax1_ripple_N : std::nan(""), "%.1f").c_str());
+  std::fprintf(out, "  strands at the end: tight %s N, slack %s N; links in the wraps %s, %s\n",
+               v(s.tension_tight_end_N, "%.1f").c_str(), v(s.tension_slack_end_N, "%.1f").c_str(),
+               v(s.wrap_links_end[0], "%.0f").c_str(), v(s.wrap_links_end[1], "%.0f").c_str());
   if (!st.hold_samples.empty()) {
     const cvt::mbd::Sample& rel = st.hold_samples.back();
-    std::printf("  start at speed: released at omega1 %.3f rad/s, omega2 %.3f rad/s, driver holding torque %.2f N m\n",
-                rel.omega_rad_s[0], rel.omega_rad_s[1], rel.tau_in_Nm);
+    std::fprintf(out,
+                 "  start at speed: released at omega1 %.3f rad/s, omega2 %.3f rad/s, driver holding torque %.2f N m\n",
+                 rel.omega_rad_s[0], rel.omega_rad_s[1], rel.tau_in_Nm);
   }
-  std::printf("  energy ledger: max residual %.2e of the largest term\n", st.ledger_residual_max_rel);
-  std::printf("  %lld steps, %lld rhs, %lld jacobians, %.2f s wall (settle %.2f s)\n", st.steps, st.rhs_evals,
-              st.jac_evals, st.wall_s, st.settle_wall_s);
+  std::fprintf(out, "  energy ledger: max residual %s of the largest term\n",
+               text_number(sampled || st.ledger_residual_max_rel > 0 ? st.ledger_residual_max_rel : std::nan(""), "%.2e")
+                   .c_str());
+  std::fprintf(out, "  %lld steps, %lld rhs, %lld jacobians, %.2f s wall (settle %.2f s)\n", st.steps, st.rhs_evals,
+               st.jac_evals, st.wall_s, st.settle_wall_s);
 }
 
 struct RunCliOptions {
   int friction_case = 0;
   std::string csv, links_csv;
   double links_every_s = 0;
+  CLI::Option* links_every_opt = nullptr;
   bool json = false;
   ModelOptions model;
   CLI::App* figures = nullptr;
@@ -412,35 +461,51 @@ Action register_mbd(CLI::App& app) {
   add_model_options(sub, opt->model);
   sub->add_option("--csv", opt->csv, "Write one row per sample (docs/cli.md#mbd-csv); '-' for stdout");
   sub->add_option("--links-csv", opt->links_csv, "Write every link's state (long format) per --links-every");
-  sub->add_option("--links-every", opt->links_every_s, "Interval of --links-csv [s] (default: --sample)");
+  opt->links_every_opt = add_real(sub, "--links-every", opt->links_every_s, {1e-6, 3600},
+                                  "Interval of --links-csv [s], from --sample to --t-end (default: --sample)");
   sub->add_flag("--json", opt->json, "Print the summary as JSON");
   opt->figures = sub->add_subcommand("figures", "Draw the seed's Figs. 13-14 and the chain on the pulleys as PNG");
   add_figure_options(opt->figures, opt->fig);
-  return [opt]() -> int {
+  return [opt, sub]() -> int {
     if (opt->figures->parsed()) return run_figures(opt->fig);
     const ModelOptions& m = opt->model;
     if (opt->friction_case == 0) throw UsageError{"--case 1|2 is required"};
     validate(m);
-    double every = opt->links_every_s;
-    if (!opt->links_csv.empty()) {
-      if (every == 0) every = m.sample_s;
-      require_range(every, m.sample_s, m.t_end_s, "--links-every", "s (from --sample to --t-end)");
+    const bool has_csv = sub->count("--csv") > 0, has_links = sub->count("--links-csv") > 0;
+    double every = m.sample_s;
+    if (has_links) {
+      if (opt->links_every_opt->count() > 0) {
+        every = opt->links_every_s;
+        if (every < m.sample_s || every > m.t_end_s)
+          throw UsageError{"--links-every: " + exact_number(every) + " s is outside [--sample " +
+                           exact_number(m.sample_s) + " s, --t-end " + exact_number(m.t_end_s) + " s]"};
+      }
       const double rows = (std::floor(m.t_end_s / every) + 1.0) * m.links;
       if (rows > static_cast<double>(m.max_rows))
         throw UsageError{"--links-csv: " + num(rows) + " rows exceed --max-rows (raise it or --links-every)"};
-    } else if (opt->links_every_s != 0) {
+    } else if (opt->links_every_opt->count() > 0) {
       throw UsageError{"--links-every applies with --links-csv only"};
     }
     if (opt->json && opt->csv == "-") throw UsageError{"--csv -: stdout carries the JSON summary; give a file"};
-    if (opt->csv == "-" && opt->links_csv == "-") throw UsageError{"--csv and --links-csv cannot both be stdout"};
-    std::FILE* csv = opt->csv.empty() ? nullptr : open_output(opt->csv);
-    std::FILE* links = opt->links_csv.empty() ? nullptr : open_output(opt->links_csv);
+    // Two tables never share a file (docs/cli.md#files).
+    cvt::files::CommandFiles files;
+    if (has_csv) files.output("--csv", opt->csv);
+    if (has_links) files.output("--links-csv", opt->links_csv);
+    std::FILE* csv = has_csv ? open_output(opt->csv, "--csv") : nullptr;
+    std::FILE* links = has_links ? open_output(opt->links_csv, "--links-csv") : nullptr;
     const RunOutcome r = run_case(m, opt->friction_case, csv, links, every, -1,
                                   "mbd " + case_label(opt->friction_case));
     close_output(csv);
     close_output(links);
+    // With a CSV on stdout the text summary goes to stderr: stdout holds data only.
+    const bool csv_on_stdout = csv == stdout || links == stdout;
     if (opt->json) print_json(summary_json(m, opt->friction_case, r));
-    else if (opt->csv != "-" && opt->links_csv != "-") print_text(m, opt->friction_case, r);
+    else print_text(csv_on_stdout ? stderr : stdout, m, opt->friction_case, r);
+    if (r.interrupted) {
+      char at[64];
+      std::snprintf(at, sizeof at, "t = %.6g s", r.summary.last.t_s);
+      throw Interrupted{at, true};
+    }
     if (r.failed) {
       char buf[64];
       std::snprintf(buf, sizeof buf, "at t = %.6g s: ", r.fail_t_s);

@@ -37,13 +37,19 @@ struct ModelOptions {
   CLI::Option* clamp2_opt = nullptr;
   CLI::Option* road_opt = nullptr;
   CLI::Option* omega0_opt = nullptr;
+  CLI::Option* max_steps_opt = nullptr;
 };
 
 void add_model_options(CLI::App* sub, ModelOptions& o);
 
-// Checks every option against its range and their combinations; throws
+// Checks every option against its range and their combinations, and the
+// run's estimated work against the step cap (docs/cli.md#caps); throws
 // UsageError (exit 2) before any work is done.
 void validate(const ModelOptions& o);
+
+// The integrator's step cap: --max-steps if given, else automatic
+// (reference_cost.hpp); throws UsageError when the estimate is above it.
+long long step_cap(const ModelOptions& o);
 
 cvt::mbd::MbdParams params_for(const ModelOptions& o, int friction_case);
 cvt::mbd::RunOptions run_options_for(const ModelOptions& o);
@@ -61,6 +67,11 @@ void write_links_rows(std::FILE* f, double t_s, const std::vector<cvt::mbd::Link
 struct RunOutcome {
   cvt::mbd::RunStats stats;
   cvt::mbd::RunSummary summary;
+  // Samples at or after the start of the summary's closing window: the
+  // ripple needs two (docs/cli.md#nulls).
+  long long window_samples = 0;
+  // SIGINT or SIGTERM stopped the run after a whole sample (docs/cli.md#interruption).
+  bool interrupted = false;
   bool failed = false;
   double fail_t_s = 0;
   std::string fail_quantity;
@@ -68,15 +79,17 @@ struct RunOutcome {
   double picture_t_s = -1;
 };
 
-// Runs one case with a progress bar; writes the CSVs as it goes. picture_t_s
-// >= 0 keeps the links at the first sample at or after that time.
+// Runs one case with a progress bar; writes the CSVs as it goes, a whole row
+// per sample, and stops after the sample at which SIGINT or SIGTERM came.
+// picture_t_s >= 0 keeps the links at the first sample at or after that time.
 RunOutcome run_case(const ModelOptions& o, int friction_case, std::FILE* csv, std::FILE* links_csv,
                     double links_every_s, double picture_t_s, const std::string& progress_label);
 
 // `cvtplant mbd figures` (cmd_mbd_figures.cpp).
 struct FigureOptions {
   std::string out_dir;
-  double picture_t_s = -1;  // -1 (not given): the end of the run
+  double picture_t_s = 0;
+  CLI::Option* picture_opt = nullptr;  // not given: the end of the run
   bool json = false;
   ModelOptions model;
 };

@@ -11,6 +11,8 @@
 #include "cmd_mbd.hpp"
 #include "commands.hpp"
 #include "io_util.hpp"
+#include "options.hpp"
+#include "cvtplant/files/replace.hpp"
 #include "cvtplant/analysis/errors.hpp"
 #include "cvtplant/analysis/figures.hpp"
 #include "cvtplant/mbd/geometry.hpp"
@@ -140,27 +142,27 @@ std::string chain_picture(const std::string& d, const ModelOptions& m, int c, co
 }  // namespace
 
 void add_figure_options(CLI::App* sub, FigureOptions& o) {
-  sub->add_option("--out-dir", o.out_dir, "Directory for the PNGs and their data (created if missing; its parent must exist)")->required();
-  sub->add_option("--picture-t", o.picture_t_s, "Time of the chain picture [s] (default: the end of the run)");
+  sub->add_option("--out-dir", o.out_dir, "Directory for the PNGs and their data (created with its parents)")->required();
+  o.picture_opt = add_real(sub, "--picture-t", o.picture_t_s, {0, 3600},
+                           "Time of the chain picture [s], at most --t-end (default: the end of the run)");
   sub->add_flag("--json", o.json, "Print the files written and both runs' summaries as JSON");
   add_model_options(sub, o.model);
 }
 
 int run_figures(const FigureOptions& o) {
   validate(o.model);
-  if (o.picture_t_s != -1 && !(o.picture_t_s >= 0 && o.picture_t_s <= o.model.t_end_s))
-    throw UsageError{"--picture-t: " + num(o.picture_t_s) + " is outside [0, --t-end]"};
-  try {
-    cvt::analysis::ensure_dir(o.out_dir);
-  } catch (const cvt::analysis::InputError& e) {
-    throw UsageError{std::string("--out-dir: ") + e.what()};
-  }
-  const double pic_t = o.picture_t_s >= 0 ? o.picture_t_s : o.model.t_end_s;
+  const bool picture_given = o.picture_opt != nullptr && o.picture_opt->count() > 0;
+  if (picture_given && o.picture_t_s > o.model.t_end_s)
+    throw UsageError{"--picture-t: " + exact_number(o.picture_t_s) + " s is above --t-end " +
+                     exact_number(o.model.t_end_s) + " s"};
+  cvt::files::make_directories(o.out_dir, "--out-dir");
+  const double pic_t = picture_given ? o.picture_t_s : o.model.t_end_s;
   std::vector<std::string> pngs;
   nlohmann::json runs = nlohmann::json::array();
   RunOutcome outcome[2];
   for (int c = 1; c <= 2; ++c) {
-    std::FILE* csv = open_output(o.out_dir + "/case" + std::to_string(c) + ".csv");
+    const std::string csv_path = o.out_dir + "/case" + std::to_string(c) + ".csv";
+    std::FILE* csv = open_output(csv_path, "--out-dir");
     outcome[c - 1] = run_case(o.model, c, csv, nullptr, 0, pic_t, "mbd figures " + case_label(c));
     close_output(csv);
     const RunOutcome& r = outcome[c - 1];
@@ -169,11 +171,23 @@ int run_figures(const FigureOptions& o) {
       std::snprintf(buf, sizeof buf, "case %d at t = %.6g s: ", c, r.fail_t_s);
       throw RunError{buf + r.fail_quantity};
     }
+    const bool sampled = r.stats.samples > 0;
     runs.push_back({{"case", c},
+                    {"status", r.interrupted ? "interrupted" : "ok"},
                     {"wall_s", r.stats.wall_s},
                     {"steps", r.stats.steps},
-                    {"energy_residual_rel", r.stats.ledger_residual_max_rel},
-                    {"csv", o.out_dir + "/case" + std::to_string(c) + ".csv"}});
+                    {"t_reached_s", sampled ? json_number(r.summary.last.t_s) : nlohmann::json(nullptr)},
+                    {"energy_residual_rel", sampled ? json_number(r.stats.ledger_residual_max_rel) : nlohmann::json(nullptr)},
+                    {"csv", csv_path}});
+    if (r.interrupted) {
+      // No figure from a part of a run: the CSV holds the rows made.
+      char at[64];
+      std::snprintf(at, sizeof at, "case %d, t = %.6g s", c, r.summary.last.t_s);
+      if (o.json)
+        print_json({{"subcommand", "mbd figures"}, {"status", "interrupted"}, {"png", nlohmann::json::array()},
+                    {"runs", runs}, {"picture_t_s", nullptr}});
+      throw Interrupted{at, true};
+    }
   }
   // The runs are done: a data file or gnuplot failing now is an output that
   // could not be made (exit 1).
@@ -185,7 +199,11 @@ int run_figures(const FigureOptions& o) {
     throw RunError{e.what()};
   }
   if (o.json) {
-    print_json({{"subcommand", "mbd figures"}, {"png", pngs}, {"runs", runs}, {"picture_t_s", outcome[0].picture_t_s}});
+    print_json({{"subcommand", "mbd figures"},
+                {"status", "ok"},
+                {"png", pngs},
+                {"runs", runs},
+                {"picture_t_s", outcome[0].picture_t_s}});
   } else {
     for (const auto& p : pngs) std::printf("%s\n", p.c_str());
   }

@@ -12,6 +12,7 @@
 #include "io_util.hpp"
 #include "options.hpp"
 #include "progress.hpp"
+#include "cvtplant/files/interrupt.hpp"
 #include "registry.hpp"
 #include "cvtplant/analysis/csv_writer.hpp"
 #include "cvtplant/integrate/method.hpp"
@@ -43,6 +44,8 @@ struct Summary {
   bool saturated = false;  // fixed point: the state left the range its arithmetic holds
   bool settled = false;
   double x1_min = 0, x1_max = 0, v_abs_max = 0;
+  long window_steps = 0;  // steps in the last window (none: its figures were not computed)
+  bool interrupted = false;  // SIGINT or SIGTERM stopped the run after a whole row
   double period_s = 0;  // 0 if no oscillation detected
   long steps = 0;
   double wall_s = 0;
@@ -110,7 +113,9 @@ Summary run(const Options& o, const cvt::FrictionParams<double>& fr, const doubl
   };
   write_row(0.0);
   // No bar when the CSV itself goes to stdout: on a terminal the two would interleave.
-  cvtcli::Progress progress("oscillator", csv == stdout ? 0.0 : o.t_end_s);
+  // The loop polls the interruption flag itself, between rows.
+  cvtcli::Progress progress("oscillator", csv == stdout ? 0.0 : o.t_end_s, "s", stderr,
+                            cvtcli::Progress::Interrupts::polled_by_caller);
 
   const auto t0 = std::chrono::steady_clock::now();
   for (long i = 1; i <= n; ++i) {
@@ -132,6 +137,7 @@ Summary run(const Options& o, const cvt::FrictionParams<double>& fr, const doubl
     }
     if (i >= window_start) {
       const double x1 = cvt::to_double(x(0));
+      if (s.window_steps++ == 0) s.x1_min = s.x1_max = x1;
       s.x1_min = std::min(s.x1_min, x1);
       s.x1_max = std::max(s.x1_max, x1);
       s.v_abs_max = std::max({s.v_abs_max, std::fabs(v1), std::fabs(cvt::to_double(x(3)))});
@@ -143,7 +149,9 @@ Summary run(const Options& o, const cvt::FrictionParams<double>& fr, const doubl
     }
     prev_v1 = v1;
     if ((i & 16383) == 0) progress.update(t);
-    if (csv != nullptr && i % o.every == 0) {
+    // A signal: this step is the last, its row written whole.
+    const bool stop = cvt::files::interrupted();
+    if (csv != nullptr && (i % o.every == 0 || stop)) {
       write_row(t);
       // Closed pipe, full disk: stop, the caller reports it (a failed block
       // write shows on the FILE).
@@ -154,6 +162,10 @@ Summary run(const Options& o, const cvt::FrictionParams<double>& fr, const doubl
       }
     }
     s.steps = i;
+    if (stop) {
+      s.interrupted = true;
+      break;
+    }
   }
   w.flush();
   if (csv != nullptr && !s.write_failed && !cvtcli::output_ok(csv)) s.write_failed = true;
@@ -162,7 +174,7 @@ Summary run(const Options& o, const cvt::FrictionParams<double>& fr, const doubl
   for (int i = 0; i < 4; ++i) s.final_state[i] = cvt::to_double(x(i));
   // Settled: the last window shows neither motion nor drift at the resolution
   // that matters to the seed's figures (1e-4 m, 1e-3 m/s).
-  s.settled = s.finite && (s.x1_max - s.x1_min) < 1e-4 && s.v_abs_max < 1e-3;
+  s.settled = s.finite && s.window_steps > 0 && (s.x1_max - s.x1_min) < 1e-4 && s.v_abs_max < 1e-3;
   if (!s.settled && crossings >= 2) s.period_s = (last_cross_t - first_cross_t) / (crossings - 1);
   return s;
 }
@@ -185,7 +197,7 @@ cvtcli::Action register_oscillator(CLI::App& app) {
   sub->add_flag("--json", opt->json, "Print a JSON summary instead of the text one");
   cvtcli::add_caps(sub, opt->caps, true, false);
 
-  return [opt]() -> int {
+  return [opt, sub]() -> int {
     const Options& o = *opt;
     cvt::Method m{};
     if (!cvt::parse_method(o.integrator.c_str(), m))
@@ -210,7 +222,7 @@ cvtcli::Action register_oscillator(CLI::App& app) {
         throw cvtcli::UsageError{msg};
       }
     }
-    std::FILE* csv = o.csv.empty() ? nullptr : cvtcli::open_output(o.csv);
+    std::FILE* csv = sub->count("--csv") == 0 ? nullptr : cvtcli::open_output(o.csv, "--csv");
     Summary s;
     if (o.scalar == "double") s = run<double>(o, fr, x0.data(), csv);
     else if (o.scalar == "float") s = run<float>(o, fr, x0.data(), csv);
@@ -221,14 +233,22 @@ cvtcli::Action register_oscillator(CLI::App& app) {
 
     const double x_eq = cvt::StickSlipOscillator<double>(cvt::OscillatorParams<double>::seed_section3(fr))
                             .sliding_equilibrium_m();
-    const char* behaviour = !s.finite       ? "diverged"
+    const char* behaviour = s.interrupted   ? "interrupted"
+                            : !s.finite     ? "diverged"
                             : s.saturated   ? "saturated"
                             : s.settled     ? "settled"
                             : s.period_s > 0 ? "oscillating"
                                              : "moving";
+    const double t_reached = static_cast<double>(s.steps) * s.dt_actual_s;
+    // Not computed (docs/cli.md#nulls): the last window's figures of a run
+    // that never reached it, a cost per step of no step.
+    const bool window = s.window_steps > 0 && !s.interrupted;
+    const double ns_step = s.steps > 0 ? 1e9 * s.wall_s / static_cast<double>(s.steps) : std::nan("");
     if (o.json) {
       nlohmann::json j;
       j["subcommand"] = "oscillator";
+      j["status"] = s.interrupted ? "interrupted" : (!s.finite || s.saturated) ? "failed" : "ok";
+      j["t_reached_s"] = t_reached;
       j["friction"] = o.friction;
       j["integrator"] = o.integrator;
       j["scalar"] = o.scalar;
@@ -239,28 +259,34 @@ cvtcli::Action register_oscillator(CLI::App& app) {
       j["final_state"] = {{"x1_m", s.final_state[0]}, {"v1_m_s", s.final_state[1]}, {"x2_m", s.final_state[2]},
                           {"v2_m_s", s.final_state[3]}};
       j["finite"] = s.finite;
-      j["settled"] = s.settled;
+      j["settled"] = window ? nlohmann::json(s.settled) : nlohmann::json(nullptr);
       j["behaviour"] = behaviour;
       j["sliding_equilibrium_m"] = x_eq;
-      j["last_window"] = {{"window_s", o.settle_window_s}, {"x1_peak_to_peak_m", s.x1_max - s.x1_min},
-                          {"max_abs_velocity_m_s", s.v_abs_max}};
+      j["last_window"] = {{"window_s", o.settle_window_s},
+                          {"x1_peak_to_peak_m", window ? nlohmann::json(s.x1_max - s.x1_min) : nlohmann::json(nullptr)},
+                          {"max_abs_velocity_m_s", window ? nlohmann::json(s.v_abs_max) : nlohmann::json(nullptr)}};
       j["period_s"] = s.period_s > 0 ? nlohmann::json(s.period_s) : nlohmann::json(nullptr);
       j["wall_s"] = s.wall_s;
-      j["ns_per_step"] = s.steps > 0 ? 1e9 * s.wall_s / static_cast<double>(s.steps) : 0.0;
+      j["ns_per_step"] = cvtcli::json_number(ns_step);
       cvtcli::print_json(j);
     } else {
       std::fprintf(info, "Stick-slip oscillator (seed Eq. 9), %s friction, %s, dt = %g s, %s\n", o.friction.c_str(),
                   o.integrator.c_str(), o.dt_s, o.scalar.c_str());
       std::fprintf(info, "  start      [x1 v1 x2 v2] = [%g %g %g %g]\n", x0[0], x0[1], x0[2], x0[3]);
-      std::fprintf(info, "  after %g s [x1 v1 x2 v2] = [%.6f %.6f %.6f %.6f]\n", o.t_end_s, s.final_state[0],
+      std::fprintf(info, "  after %g s [x1 v1 x2 v2] = [%.6f %.6f %.6f %.6f]\n", t_reached, s.final_state[0],
                   s.final_state[1], s.final_state[2], s.final_state[3]);
       std::fprintf(info, "  behaviour: %s", behaviour);
       if (s.settled) std::fprintf(info, " (sliding equilibrium x* = %.6f m)", x_eq);
       if (s.period_s > 0)
         std::fprintf(info, " (period %.4f s, x1 peak-to-peak %.4f m over the last %g s)", s.period_s, s.x1_max - s.x1_min,
                     o.settle_window_s);
-      std::fprintf(info, "\n  %ld steps in %.3f s wall (%.0f ns/step)\n", s.steps, s.wall_s,
-                  s.steps > 0 ? 1e9 * s.wall_s / static_cast<double>(s.steps) : 0.0);
+      std::fprintf(info, "\n  %ld steps in %.3f s wall (%s ns/step)\n", s.steps, s.wall_s,
+                   cvtcli::text_number(ns_step, "%.0f").c_str());
+    }
+    if (s.interrupted) {
+      char at[64];
+      std::snprintf(at, sizeof at, "t = %.6g s", t_reached);
+      throw cvtcli::Interrupted{at, true};
     }
     if (!s.finite || s.saturated) {
       char buf[200];

@@ -27,7 +27,7 @@ struct Trace {
   cvt::RomFault fault = cvt::RomFault::none;
   long frames = 0;
   double wall_s = 0;
-  double residual_rel = 0;
+  double residual_rel = std::nan("");
 };
 
 // Samples the speeds, the axial force and the first lump's velocity every
@@ -61,7 +61,8 @@ struct Collector {
       tr.xd1.push_back(cvt::to_double(x[kV1]));
       tr.frames = i;
       const auto& e = sim.energy();
-      tr.residual_rel = e.scale_J() > 0 ? double(e.residual_J() / e.scale_J()) : 0.0;
+      // Relative to the energy that flowed: none flowed, not computed (docs/cli.md#nulls).
+      tr.residual_rel = e.scale_J() > 0 ? double(e.residual_J() / e.scale_J()) : std::nan("");
       return true;
     };
     const auto t0 = std::chrono::steady_clock::now();
@@ -81,15 +82,17 @@ Trace collect(const cvt::Scene& s, cvt::ScalarKind k, const cvt::RomSimConfig& c
                                       std::string("--scalar ") + cvt::scalar_kind_name(k) + ": ");
 }
 
-// RMS(a - ref) / RMS(ref) over the common frames; inf if the candidate stopped early.
+// RMS(a - ref) / RMS(ref) over the common frames; NaN (not computed: null,
+// n/a) if the candidate stopped early or the reference is 0 throughout while
+// the candidate is not.
 double rel_rms(const std::vector<double>& a, const std::vector<double>& ref) {
-  if (a.size() != ref.size()) return INFINITY;
+  if (a.size() != ref.size()) return std::nan("");
   double se = 0, sr = 0;
   for (std::size_t i = 0; i < a.size(); ++i) {
     se += (a[i] - ref[i]) * (a[i] - ref[i]);
     sr += ref[i] * ref[i];
   }
-  if (sr == 0) return se == 0 ? 0.0 : INFINITY;
+  if (sr == 0) return se == 0 ? 0.0 : std::nan("");
   return std::sqrt(se / sr);
 }
 
@@ -188,13 +191,16 @@ cvtcli::Action register_rom_accuracy(CLI::App& app) {
                       {"err_omega2_rel", num(e2)},
                       {"err_F_ax_rel", num(ef)},
                       {"err_xd1_rel", num(ex)},
-                      {"energy_residual_rel", tr.residual_rel},
+                      {"energy_residual_rel", num(tr.residual_rel)},
                       {"ns_per_frame", ns},
                       {"fault", cvt::rom_fault_name(tr.fault)}});
       progress.finish();  // the row goes where the bar was; the next update redraws it below
-      if (!opt->json)
-        std::printf("%-24s %5d %-8s %11.3e %11.3e %11.3e %11.3e %11.3e %10.0f %s\n", cvt::method_name(c.m), c.substeps,
-                    opt->scalar.c_str(), e1, e2, ef, ex, tr.residual_rel, ns, cvt::rom_fault_name(tr.fault));
+      if (!opt->json) {
+        const auto e = [](double v) { return cvtcli::text_number(v, "%.3e"); };
+        std::printf("%-24s %5d %-8s %11s %11s %11s %11s %11s %10.0f %s\n", cvt::method_name(c.m), c.substeps,
+                    opt->scalar.c_str(), e(e1).c_str(), e(e2).c_str(), e(ef).c_str(), e(ex).c_str(),
+                    e(tr.residual_rel).c_str(), ns, cvt::rom_fault_name(tr.fault));
+      }
     }
     if (opt->json) {
       nlohmann::json j;

@@ -16,7 +16,10 @@
 #include "progress.hpp"
 #include "registry.hpp"
 #include "scene_file.hpp"
+#include "options.hpp"
 #include "validation_options.hpp"
+#include "cvtplant/files/paths.hpp"
+#include "cvtplant/files/replace.hpp"
 #include "cvtplant/scene/builtin_scenes.hpp"
 #include "cvtplant/validation/report.hpp"
 #include "cvtplant/validation/scene_check.hpp"
@@ -72,7 +75,6 @@ std::vector<std::shared_ptr<LoadedScene>> scenes_for(const std::string& which, c
   return out;
 }
 
-nlohmann::json jnum(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 nlohmann::json jtime(double t) { return t >= 0 ? nlohmann::json(t) : nlohmann::json(nullptr); }
 
 nlohmann::json to_json(const SceneOutput& o) {
@@ -90,22 +92,27 @@ nlohmann::json to_json(const SceneOutput& o) {
   j["compared_s"] = r.cmp.compared_s;
   j["sheave_at_stop_s"] = {{"driver", jtime(r.stop_s[0])}, {"driven", jtime(r.stop_s[1])}};
   j["window_s"] = r.cmp.window_s;
+  // From the cache, no CPU or wall time was spent now: null; the steps and
+  // the residual are the stored run's.
   j["reference"] = {{"from_cache", r.ref.from_cache},
-                    {"cpu_s", r.ref.cpu_s},
-                    {"wall_s", r.ref.wall_s},
+                    {"cpu_s", json_number(r.ref.cpu_s)},
+                    {"wall_s", json_number(r.ref.wall_s)},
                     {"steps", r.ref.steps},
-                    {"energy_residual_rel", r.ref.ledger_residual_rel},
-                    {"failure", r.ref.failure.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.ref.failure)}};
+                    {"energy_residual_rel", json_number(r.ref.ledger_residual_rel)},
+                    {"failure", r.ref.failure.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.ref.failure)},
+                    {"cache_problem",
+                     r.ref.cache_problem.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.ref.cache_problem)}};
   nlohmann::json rows = nlohmann::json::array();
   for (const auto& e : r.cmp.rows)
     rows.push_back({{"quantity", e.quantity},
                     {"unit", e.unit},
-                    {"rel_rms", jnum(e.rel_rms)},
-                    {"plant_ss", jnum(e.plant_ss)},
-                    {"reference_ss", jnum(e.reference_ss)},
-                    {"ss_rel", jnum(e.ss_rel)}});
+                    {"rel_rms", json_number(e.rel_rms)},
+                    {"plant_ss", json_number(e.plant_ss)},
+                    {"reference_ss", json_number(e.reference_ss)},
+                    {"ss_rel", json_number(e.ss_rel)}});
   j["errors"] = rows;
-  j["F_ax1_ripple_N"] = {{"plant", r.cmp.ripple_plant_N}, {"reference", r.cmp.ripple_reference_N}};
+  j["F_ax1_ripple_N"] = {{"plant", json_number(r.cmp.ripple_plant_N)},
+                         {"reference", json_number(r.cmp.ripple_reference_N)}};
   j["gross_slip_s"] = {{"threshold_m_s", val::kGrossSlip_m_s},
                        {"plant", jtime(r.cmp.gross_slip_plant_s)},
                        {"reference", jtime(r.cmp.gross_slip_reference_s)}};
@@ -114,17 +121,10 @@ nlohmann::json to_json(const SceneOutput& o) {
   return j;
 }
 
-std::string pct(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.1f %%", 100.0 * v);
-  return b;
-}
+// Values that were not computed read "n/a" (docs/cli.md#nulls).
+std::string pct(double v) { return text_number(100.0 * v, "%.1f %%"); }
 
-std::string fmt(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.4g", v);
-  return b;
-}
+std::string fmt(double v) { return text_number(v, "%.4g"); }
 
 std::string tfmt(double t) { return t >= 0 ? fmt(t) + " s" : "never"; }
 
@@ -138,6 +138,9 @@ void print_text(const std::vector<SceneOutput>& results) {
     std::printf("## %s (%g s; compared over 0-%g s; steady state: the last %g s of it; reference on %s sheaves, %s)\n\n",
                 r.name.c_str(), r.t_end_s, r.cmp.compared_s, r.cmp.window_s, r.clamped ? "clamped" : "fixed",
                 r.ref.from_cache ? "from the cache" : "run now");
+    if (!r.ref.cache_problem.empty())
+      std::printf("A cache entry of this run failed its checks and the reference was run again: %s.\n\n",
+                  r.ref.cache_problem.c_str());
     if (!r.ref.failure.empty()) std::printf("The comparison ends there: %s.\n\n", r.ref.failure.c_str());
     if (r.clamped)
       std::printf("Reference's movable sheaves at their end stops (a ratio limit) from: driver %s, driven %s.\n\n",
@@ -161,9 +164,8 @@ Action register_validate(CLI::App& app) {
   sub->add_option("--scene", opt->scene, "A scene name, a scene file, or 'all' (every built-in drive-train scene)")
       ->capture_default_str();
   add_reference_options(sub, opt->ref, "Directory for the overlays, CSVs and the reference cache");
-  sub->add_option("--t-end", opt->ref.t_end_s, "Shorten every run to this simulated time [s] (default: each scene's)");
-  sub->add_option("--max-t-end", opt->max_t_end_s, "Cap on a run's simulated time [s] (work); raise it for long scenes")
-      ->capture_default_str();
+  add_real(sub, "--max-t-end", opt->max_t_end_s, {0, 3600, true},
+           "Cap on a run's simulated time [s] (work); raise it for long scenes (default 60)");
   auto* dir_opt = sub->add_option("--scene-dir", opt->scene_dir,
                                   "Directory whose scene files (*.toml) --scene all adds to the built-in scenes")
                       ->capture_default_str();
@@ -176,35 +178,76 @@ Action register_validate(CLI::App& app) {
       const Options& o = *opt;
       std::error_code ec;
       if (dir_opt->count() > 0 && !std::filesystem::is_directory(o.scene_dir, ec))
-        throw UsageError{"--scene-dir: " + o.scene_dir + " is not a directory"};
-      if (!(o.max_t_end_s > 0 && std::isfinite(o.max_t_end_s))) throw UsageError{"--max-t-end: must be > 0"};
+        throw UsageError{"--scene-dir: " + quoted(o.scene_dir, 200) + " is not a directory"};
       const val::RunSettings settings = reference_settings(sub, o.ref);
       const auto scenes = scenes_for(o.scene, o.scene_dir);
-      // Every scene's length and the parameter file are checked before any work.
+      // Every file read and written, before any work: no output over an
+      // input, no two scenes' results in one file (docs/cli.md#files).
+      cvt::files::CommandFiles files;
+      const bool has_params = sub->count("--params") > 0;
+      if (has_params) files.input("--params", o.params);
+      for (const auto& l : scenes)
+        if (l->source != "built-in") files.input(o.scene == "all" ? "--scene-dir" : "--scene", l->source);
+      for (const auto& l : scenes) {
+        const std::string who = "--out-dir (scene " + l->name + (l->source == "built-in" ? "" : " of " + l->source) + ")";
+        files.output(who, o.ref.out_dir + "/" + l->name + ".csv");
+        if (o.figures) {
+          files.output(who, o.ref.out_dir + "/" + l->name + ".png");
+          files.output(who, o.ref.out_dir + "/" + l->name + ".gp");
+        }
+      }
+      // Every scene's length, its reference's work and the parameter file
+      // are checked before any work.
       std::vector<cvt::Scene> plant_scenes;
+      std::vector<val::RunSettings> scene_settings;
       for (const auto& l : scenes) {
         plant_scenes.push_back(l->scene);
-        if (!o.params.empty()) apply_params_file(o.params, plant_scenes.back());
+        if (has_params) apply_params_file(o.params, plant_scenes.back());
         const double t_end = val::run_length_s(l->scene, settings);
         if (t_end > o.max_t_end_s)
           throw UsageError{"scene " + l->name + ": " + fmt(t_end) + " s exceeds --max-t-end " + fmt(o.max_t_end_s) +
                            " s (raise it or shorten with --t-end)"};
+        scene_settings.push_back(settings);
+        scene_settings.back().max_steps = reference_step_cap(l->scene, settings, o.ref, l->name);
       }
       prepare_out_dir(o.ref);
       std::vector<SceneOutput> results;
+      const auto print = [&](bool interrupted) {
+        if (o.json) {
+          nlohmann::json j;
+          j["subcommand"] = "validate";
+          j["status"] = interrupted ? "interrupted" : "ok";
+          j["out_dir"] = o.ref.out_dir;
+          j["sheaves"] = o.ref.sheaves;
+          j["scenes"] = nlohmann::json::array();
+          for (const auto& r : results) j["scenes"].push_back(to_json(r));
+          print_json(j);
+        } else {
+          std::printf("The reference's sheaves: %s.\n\n", o.ref.sheaves == "scene"
+                                                              ? "each scene's (fixed where the plant's are, else clamped)"
+                                                              : o.ref.sheaves.c_str());
+          print_text(results);
+        }
+      };
       for (std::size_t i = 0; i < scenes.size(); ++i) {
         const auto& l = scenes[i];
         SceneOutput out;
-        {
+        try {
           Progress progress("validate " + l->name + ": reference", val::run_length_s(l->scene, settings));
-          out.r = val::check_scene(l->name, l->scene, plant_scenes[i], settings,
+          out.r = val::check_scene(l->name, l->scene, plant_scenes[i], scene_settings[i],
                                    [&](double t) { progress.update(t); });
+        } catch (const Interrupted& e) {
+          // The scenes done so far are reported; this one's reference run
+          // is not stored (the cache keeps whole runs only).
+          print(true);
+          throw Interrupted{"scene " + l->name + "'s reference, " + e.at, true};
         }
+        report_cache_problem("validate", out.r.ref);
         if (out.r.skipped.empty()) {
           out.csv = o.ref.out_dir + "/" + l->name + ".csv";
-          std::FILE* f = open_output(out.csv);
-          val::write_overlay_csv(f, out.r.plant, out.r.ref.series);
-          close_output(f);
+          cvt::files::ReplacingFile f(out.csv);
+          val::write_overlay_csv(f.stream(), out.r.plant, out.r.ref.series);
+          f.commit();
           if (o.figures) {
             out.png = o.ref.out_dir + "/" + l->name + ".png";
             val::write_overlay_png(o.ref.out_dir, l->name, out.csv, out.png, out.r.cmp.compared_s, out.r.t_end_s);
@@ -212,20 +255,7 @@ Action register_validate(CLI::App& app) {
         }
         results.push_back(std::move(out));
       }
-      if (o.json) {
-        nlohmann::json j;
-        j["subcommand"] = "validate";
-        j["out_dir"] = o.ref.out_dir;
-        j["sheaves"] = o.ref.sheaves;
-        j["scenes"] = nlohmann::json::array();
-        for (const auto& r : results) j["scenes"].push_back(to_json(r));
-        print_json(j);
-      } else {
-        std::printf("The reference's sheaves: %s.\n\n", o.ref.sheaves == "scene"
-                                                            ? "each scene's (fixed where the plant's are, else clamped)"
-                                                            : o.ref.sheaves.c_str());
-        print_text(results);
-      }
+      print(false);
       return 0;
     });
   };

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 
 #include "options.hpp"
@@ -64,10 +65,11 @@ std::string read_input_file(const std::string& path, std::size_t max_bytes, cons
   return text;
 }
 
-std::FILE* open_output(const std::string& path, const std::string& flag, const std::vector<std::string>& inputs) {
+std::FILE* open_output(const std::string& path, const std::string& flag, const std::vector<std::string>& inputs,
+                       const std::string& inputs_role) {
   try {
     cvt::files::CommandFiles files;
-    for (const std::string& in : inputs) files.input("the input file " + cvt::files::shown_path(in), in);
+    for (const std::string& in : inputs) files.input(inputs_role, in);
     files.output(flag, path);
   } catch (const cvt::files::PathError& e) {
     throw UsageError{e.what()};
@@ -79,6 +81,17 @@ std::FILE* open_output(const std::string& path, const std::string& flag, const s
   std::FILE* f = std::fopen(path.c_str(), "w");
   if (f == nullptr) throw UsageError{flag + ": cannot write " + quoted(path, 200) + ": " + std::strerror(errno)};
   return f;
+}
+
+void refuse_input_in_dir(const std::string& in_flag, const std::string& in, const std::string& dir_flag,
+                         const std::string& dir) {
+  if (in.empty() || in == "-") return;
+  const std::string parent = std::filesystem::path(in).has_parent_path()
+                                 ? std::filesystem::path(in).parent_path().string()
+                                 : std::string(".");
+  if (cvt::files::same_file(parent, dir))
+    throw UsageError{in_flag + ": " + quoted(in, 200) + " is in " + dir_flag + " " + quoted(dir, 200) +
+                     ", whose files this command writes; give the input from another directory"};
 }
 
 void write_generated_file(const std::string& path, const std::string& text, const std::string& flag) {

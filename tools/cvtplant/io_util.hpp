@@ -27,11 +27,18 @@ std::string read_input_file(const std::string& path, std::size_t max_bytes, cons
 // Opens `path` for writing ("-" = stdout) or throws UsageError naming
 // `flag`: an empty path, one with a control character, a directory, or one
 // that cannot be created. `inputs` are files the command reads: writing over
-// one of them (the same file through any link) is refused. A command with
+// one of them (the same file through any link) is refused, naming them as
+// `inputs_role` ("--scene", "the shards"). A command with
 // several outputs checks them all first with cvt::files::CommandFiles
 // (docs/cli.md#files).
 std::FILE* open_output(const std::string& path, const std::string& flag = "output",
-                       const std::vector<std::string>& inputs = {});
+                       const std::vector<std::string>& inputs = {}, const std::string& inputs_role = "an input");
+// Refuses an input file that lies in `dir` (the same directory by device
+// and inode), where a command writes files of fixed names (figures, data,
+// scripts): one of them could be the input. A UsageError naming both flags.
+void refuse_input_in_dir(const std::string& in_flag, const std::string& in, const std::string& dir_flag,
+                         const std::string& dir);
+
 // A generated file (a parameter file, a header, a script) written whole or
 // not at all (cvt::files::replace_file); UsageError naming `flag` if it
 // cannot be created, RunError if the write fails.

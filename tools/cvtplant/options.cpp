@@ -1,7 +1,6 @@
 #include "options.hpp"
 
 #include <cerrno>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -103,6 +102,10 @@ CLI::Option* add_int(CLI::App* app, const std::string& name, long& var, long lon
                      const std::string& help) {
   return add_integer(app, name, var, lo, hi, help);
 }
+CLI::Option* add_int(CLI::App* app, const std::string& name, long long& var, long long lo, long long hi,
+                     const std::string& help) {
+  return add_integer(app, name, var, lo, hi, help);
+}
 
 void add_caps(CLI::App* app, Caps& caps, bool steps, bool memory) {
   if (steps)
@@ -140,9 +143,13 @@ std::string fmt_count(double n) {
 }
 
 std::string exact_number(double v) {
-  char buf[64];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
+  // %g with the fewest digits that read back to v: 0.0005, 99.99999, 1e-300.
+  char buf[40];
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
+  return buf;
 }
 
 std::string quoted(const std::string& text, std::size_t max_chars) {

@@ -37,6 +37,8 @@ CLI::Option* add_int(CLI::App* app, const std::string& name, int& var, long long
                      const std::string& help);
 CLI::Option* add_int(CLI::App* app, const std::string& name, long& var, long long lo, long long hi,
                      const std::string& help);
+CLI::Option* add_int(CLI::App* app, const std::string& name, long long& var, long long lo, long long hi,
+                     const std::string& help);
 
 // Caps on the work and memory of one run. The defaults keep a run on this
 // kind of host under about ten minutes and 1 GiB; the flags raise them.

@@ -12,6 +12,7 @@
 #include "commands.hpp"
 #include "io_util.hpp"
 #include "options.hpp"
+#include "cvtplant/files/names.hpp"
 #include "cvtplant/scene/builtin_scenes.hpp"
 
 namespace cvtcli {
@@ -256,7 +257,12 @@ class Reader {
   // A parameter file (`cvtplant calibrate --out`): [params] only, applied to s.
   void read_params_only(cvt::Scene& s) {
     check_known(root_, "", {"params"});
-    if (const toml::table* t = table(root_, "", "params")) params(*t, s.params);
+    // A file without values would leave the plant as it is without a word:
+    // almost surely the wrong file.
+    const toml::table* t = table(root_, "", "params");
+    if (t == nullptr) fail(root_.source(), "params", "no [params] table: not a parameter file");
+    if (t->empty()) fail(t->source(), "params", "the [params] table is empty");
+    params(*t, s.params);
     const cvt::SceneIssue issue = cvt::validate_scene(s);
     if (!issue.ok) fail_field(field_key(issue.field), issue.message);
   }
@@ -272,7 +278,14 @@ class Reader {
       s = *b;
     }
     out.name = text(root_, "", "name", base.empty() ? std::string("unnamed") : base);
+    // The name becomes file names (validate's DIR/NAME.csv) and report
+    // headings: one rule for it (docs/cli.md#names).
+    if (const std::string why = cvt::files::name_problem(out.name); !why.empty())
+      fail_field("name", cvtcli::quoted(out.name) + ": " + why);
     out.summary = text(root_, "", "summary", "");
+    for (const char c : out.summary)
+      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+        fail_field("summary", "holds a control character (a summary is one line)");
     s.features = name_list(root_, "features", kFeatureNames, static_cast<int>(std::size(kFeatureNames)), s.features);
     s.log = name_list(root_, "log", kLogNames, static_cast<int>(std::size(kLogNames)), s.log);
     s.t_end_s = number(root_, "", "t_end_s", s.t_end_s);

@@ -2,25 +2,15 @@
 #include "validation_options.hpp"
 
 #include <cmath>
-#include <filesystem>
-#include <system_error>
+#include <cstdio>
 
 #include "commands.hpp"
+#include "options.hpp"
+#include "reference_cost.hpp"
+#include "cvtplant/files/paths.hpp"
+#include "cvtplant/files/replace.hpp"
 
 namespace cvtcli {
-
-namespace {
-
-void make_dir(const std::string& d) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(d, ec)) return;
-  if (std::filesystem::exists(d, ec)) throw UsageError{"--out-dir: '" + d + "' exists and is not a directory"};
-  std::filesystem::create_directories(d, ec);
-  if (ec || !std::filesystem::is_directory(d, ec))
-    throw UsageError{"--out-dir: cannot create directory '" + d + "'"};
-}
-
-}  // namespace
 
 void add_reference_options(CLI::App* sub, ReferenceOptions& o, const std::string& out_dir_what) {
   sub->add_option("--out-dir", o.out_dir, out_dir_what + " (created with its parents)")->capture_default_str();
@@ -31,29 +21,38 @@ void add_reference_options(CLI::App* sub, ReferenceOptions& o, const std::string
       ->capture_default_str()
       ->check(CLI::IsMember(std::vector<std::string>(std::begin(cvt::validation::kSheaveChoiceNames),
                                                      std::end(cvt::validation::kSheaveChoiceNames))));
-  sub->add_option("--rtol", o.rtol, "Reference's BDF relative tolerance, [1e-11, 1e-3]")->capture_default_str();
-  sub->add_option("--max-steps", o.max_steps, "Cap on the reference's integrator steps per scene, [1, 1e12]")
-      ->capture_default_str();
+  add_real(sub, "--rtol", o.rtol, {1e-11, 1e-3}, "Reference's BDF relative tolerance (default 5e-7)");
+  o.max_steps_opt = add_int(sub, "--max-steps", o.max_steps, 1, 1000000000000LL,
+                            "Cap on each reference run's integrator steps (default: 20x its estimate, at most 1e8; "
+                            "docs/cli.md#caps)");
+  add_real(sub, "--t-end", o.t_end_s, {0, 3600, true},
+           "Shorten every run to this simulated time [s] (default: each scene's)");
 }
 
 cvt::validation::RunSettings reference_settings(const CLI::App* sub, const ReferenceOptions& o) {
-  if (sub->count("--t-end") > 0 && !(o.t_end_s > 0 && std::isfinite(o.t_end_s)))
-    throw UsageError{"--t-end: must be a positive number of seconds"};
-  if (!(o.rtol >= 1e-11 && o.rtol <= 1e-3)) throw UsageError{"--rtol: outside [1e-11, 1e-3]"};
-  if (!(o.max_steps >= 1 && o.max_steps <= 1000000000000LL)) throw UsageError{"--max-steps: outside [1, 1e12]"};
-  if (o.out_dir.empty()) throw UsageError{"--out-dir: empty"};
   cvt::validation::RunSettings st;
   st.sheaves = cvt::validation::sheave_choice(o.sheaves);
-  st.t_end_s = o.t_end_s;
+  st.t_end_s = sub->count("--t-end") > 0 ? o.t_end_s : 0.0;
   st.rtol = o.rtol;
-  st.max_steps = o.max_steps;
   st.cache_dir = o.out_dir + "/reference-cache";
   return st;
 }
 
+long long reference_step_cap(const cvt::Scene& s, const cvt::validation::RunSettings& st, const ReferenceOptions& o,
+                             const std::string& scene_name) {
+  const bool given = o.max_steps_opt != nullptr && o.max_steps_opt->count() > 0;
+  return step_cap(bdf_work(cvt::validation::run_length_s(s, st), st.rtol), given, static_cast<double>(o.max_steps),
+                  "scene " + scene_name + "'s reference run");
+}
+
 void prepare_out_dir(const ReferenceOptions& o) {
-  make_dir(o.out_dir);
-  make_dir(o.out_dir + "/reference-cache");
+  cvt::files::make_directories(o.out_dir + "/reference-cache", "--out-dir");
+}
+
+void report_cache_problem(const std::string& command, const cvt::validation::ReferenceRun& r) {
+  if (r.cache_problem.empty()) return;
+  std::fprintf(stderr, "cvtplant %s: note: a cache entry failed its checks and was run again: %s\n", command.c_str(),
+               cvt::files::shown_path(r.cache_problem).c_str());
 }
 
 }  // namespace cvtcli

@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "cvtplant/validation/cache.hpp"
 #include "cvtplant/validation/scene_check.hpp"
 
 namespace cvtcli {
@@ -19,18 +20,31 @@ struct ReferenceOptions {
   std::string sheaves = "scene";
   double t_end_s = 0;  // 0: each scene's own
   double rtol = 5e-7;
-  long long max_steps = 20000000;
+  long long max_steps = 0;  // given: the cap of every reference run; else automatic per run
+  CLI::Option* max_steps_opt = nullptr;
 };
 
-// --out-dir (what it holds: `out_dir_what`), --sheaves, --rtol, --max-steps.
+// --out-dir (what it holds: `out_dir_what`), --sheaves, --rtol, --max-steps
+// and --t-end (each with its range).
 void add_reference_options(CLI::App* sub, ReferenceOptions& o, const std::string& out_dir_what);
 
-// Checks --t-end (if given: > 0), --rtol, --max-steps and --out-dir and
-// returns the module's settings; throws UsageError.
+// The module's settings from the options (the step cap is set per run by
+// reference_step_cap).
 cvt::validation::RunSettings reference_settings(const CLI::App* sub, const ReferenceOptions& o);
 
+// The step cap of one scene's reference run: --max-steps if given, else
+// automatic from its estimated work (reference_cost.hpp); throws
+// UsageError naming the scene when the estimate is above it.
+long long reference_step_cap(const cvt::Scene& s, const cvt::validation::RunSettings& st, const ReferenceOptions& o,
+                             const std::string& scene_name);
+
 // Creates the output directory and its reference-cache/ (with their
-// parents); throws UsageError naming --out-dir.
+// parents; one that another run creates at the same moment is fine);
+// throws UsageError naming --out-dir.
 void prepare_out_dir(const ReferenceOptions& o);
+
+// A note on stderr when a cache entry failed its checks and the reference
+// was run again (docs/validation.md#cache).
+void report_cache_problem(const std::string& command, const cvt::validation::ReferenceRun& r);
 
 }  // namespace cvtcli

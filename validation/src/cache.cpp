@@ -1,14 +1,18 @@
 // Reference runs cached on disk by their inputs (docs/validation.md#cache).
 #include "cvtplant/validation/cache.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <type_traits>
 
+#include "cvtplant/files/paths.hpp"
+#include "cvtplant/files/replace.hpp"
 #include "cvtplant/mbd/params_fields.hpp"
 #include "cvtplant/validation/errors.hpp"
 #include "cvtplant/validation/series.hpp"
@@ -18,7 +22,7 @@ namespace cvt::validation {
 namespace {
 
 // The CSV's format: raised when its columns change (the key carries it).
-constexpr int kCacheFormat = 4;
+constexpr int kCacheFormat = 5;
 
 const char* choice_name(cvt::FrictionLaw v) { return cvt::value_name(cvt::kFrictionLawNames, v); }
 const char* choice_name(cvt::SignFunction v) { return cvt::value_name(cvt::kSignFunctionNames, v); }
@@ -50,63 +54,14 @@ struct KeyWriter {
   }
 };
 
-std::string read_all(const std::string& path) {
+// The whole of a file; `found` false when it cannot be opened.
+std::string read_all(const std::string& path, bool& found) {
   std::ifstream f(path, std::ios::binary);
-  if (!f) return {};
+  found = static_cast<bool>(f);
+  if (!found) return {};
   std::ostringstream s;
   s << f.rdbuf();
   return s.str();
-}
-
-constexpr const char* kCsvHeader =
-    "t_s,omega1_rad_s,omega2_rad_s,F_ax1_N,torque_driver_Nm,slip1_m_s,wrap_slip1_m_s,sheave1_m,sheave2_m\n";
-constexpr int kCsvColumns = 9;  // the series' columns, then the two sheave openings
-
-// The cache's CSV: the series' columns (kSeriesColumns) and the sheave
-// openings, every value to 17 digits, so a run read back is bit for bit the
-// run that was stored.
-bool read_series(const std::string& path, ReferenceRun& out) {
-  std::FILE* f = std::fopen(path.c_str(), "r");
-  if (f == nullptr) return false;
-  char line[512];
-  bool ok = std::fgets(line, sizeof line, f) != nullptr && std::string(line) == kCsvHeader;
-  std::vector<double>* cols[kCsvColumns];
-  int c = 0;
-  for (const auto col : kSeriesColumns) cols[c++] = &(out.series.*col);
-  cols[c++] = &out.sheave1_m;
-  cols[c++] = &out.sheave2_m;
-  while (ok && std::fgets(line, sizeof line, f) != nullptr) {
-    const char* p = line;
-    double v[kCsvColumns];
-    for (int i = 0; i < kCsvColumns && ok; ++i) {
-      char* end = nullptr;
-      v[i] = std::strtod(p, &end);
-      ok = end != p && *end == (i + 1 < kCsvColumns ? ',' : '\n');
-      p = end + 1;
-    }
-    if (ok)
-      for (int i = 0; i < kCsvColumns; ++i) cols[i]->push_back(v[i]);
-  }
-  std::fclose(f);
-  return ok && out.series.size() > 0;
-}
-
-void write_series(const std::string& path, const ReferenceRun& r) {
-  std::FILE* f = std::fopen(path.c_str(), "w");
-  if (f == nullptr) throw InputError("cannot write " + path);
-  std::fputs(kCsvHeader, f);
-  const Series& s = r.series;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    for (const auto col : kSeriesColumns) std::fprintf(f, "%.17g,", (s.*col)[i]);
-    std::fprintf(f, "%.17g,%.17g\n", r.sheave1_m[i], r.sheave2_m[i]);
-  }
-  if (std::fclose(f) != 0) throw InputError("cannot write " + path);
-}
-
-void write_text(const std::string& path, const std::string& text) {
-  std::ofstream f(path, std::ios::binary);
-  f << text;
-  if (!f) throw InputError("cannot write " + path);
 }
 
 }  // namespace
@@ -121,29 +76,27 @@ std::string reference_key(const cvt::mbd::MbdParams& p, const cvt::mbd::RunOptio
   return k.str();
 }
 
-std::string key_hash(const std::string& key) {
-  std::uint64_t h = 14695981039346656037ull;
-  for (const unsigned char c : key) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-  return buf;
-}
-
 ReferenceRun reference_run(const cvt::mbd::MbdParams& p, const cvt::mbd::RunOptions& r, const std::string& cache_dir,
                            const cvt::mbd::ProgressSink& on_progress) {
   const std::string key = reference_key(p, r);
   const std::string base = cache_dir + "/" + key_hash(key);
   ReferenceRun out;
-  // The key file is written last: a run cut short leaves no key, so no hit.
-  if (read_all(base + ".key") == key && read_series(base + ".csv", out)) {
-    out.from_cache = true;
-    out.failure = read_all(base + ".failure");
-    return out;
+  std::string problem;
+  bool have_key = false, have_csv = false;
+  const std::string key_file = read_all(base + ".key", have_key);
+  // No key file: no entry (the key is written last, so a run cut short
+  // leaves none). An entry that fails its checks is run again.
+  if (have_key) {
+    const std::string csv_file = read_all(base + ".csv", have_csv);
+    problem = have_csv ? parse_cache_entry(key_file, csv_file, key, r, base, out) : base + ".csv: missing";
+    if (problem.empty()) {
+      out.from_cache = true;
+      out.cpu_s = out.wall_s = std::nan("");
+      return out;
+    }
   }
   out = ReferenceRun{};
+  out.cache_problem = problem;
   const std::size_t n = static_cast<std::size_t>(r.t_end_s / r.sample_s) + 2;
   out.series.reserve(n);
   out.sheave1_m.reserve(n);
@@ -162,6 +115,7 @@ ReferenceRun reference_run(const cvt::mbd::MbdParams& p, const cvt::mbd::RunOpti
     out.sheave2_m.push_back(s.sheave_opening_m[1]);
   };
   cvt::mbd::RunStats st;
+  bool capped = false;
   try {
     st = cvt::mbd::simulate(p, r, on_sample, on_progress);
   } catch (const cvt::mbd::RunFailure& e) {
@@ -171,18 +125,26 @@ ReferenceRun reference_run(const cvt::mbd::MbdParams& p, const cvt::mbd::RunOpti
     std::snprintf(buf, sizeof buf, "the reference stopped at t = %.6g s after %lld steps: ", e.t_s, e.stats.steps);
     out.failure = buf + e.quantity;
     st = e.stats;
+    capped = e.stats.steps >= r.max_steps;
   }
   if (out.series.size() < 2) throw RunError(out.failure.empty() ? "the reference made no samples" : out.failure);
   out.cpu_s = st.cpu_s;
   out.wall_s = st.wall_s;
   out.steps = st.steps;
   out.ledger_residual_rel = st.ledger_residual_max_rel;
-  write_series(base + ".csv", out);
-  if (!out.failure.empty())
-    write_text(base + ".failure", out.failure);
-  else
-    std::remove((base + ".failure").c_str());
-  write_text(base + ".key", key);
+  // A run the step cap ended is used, not kept: the cap is no part of the
+  // key, and a larger one would go further.
+  if (capped) return out;
+  std::string key_text, csv_text;
+  format_cache_entry(out, key, key_text, csv_text);
+  try {
+    cvt::files::replace_file(base + ".csv", csv_text);
+    cvt::files::replace_file(base + ".key", key_text);
+  } catch (const cvt::files::PathError& e) {
+    throw InputError(std::string("the reference cache: ") + e.what());
+  } catch (const cvt::files::WriteError& e) {
+    throw RunError(std::string("the reference cache: ") + e.what());
+  }
   return out;
 }
 

@@ -4,11 +4,11 @@
 
 #include <Eigen/Dense>
 #include <unsupported/Eigen/LevenbergMarquardt>
-#include <unsupported/Eigen/NumericalDiff>
 
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
+#include <limits>
 #include <type_traits>
 
 #include "cvtplant/plant/rom_param_fields.hpp"
@@ -132,15 +132,59 @@ void Calibration::residuals(const double* theta, double* f) {
   }
 }
 
+// The residuals for Eigen's Levenberg-Marquardt, with its Jacobian by
+// forward differences (the steps of Eigen's NumericalDiff at epsfcn 1e-6),
+// under a cap on plant evaluations: an evaluation past `limit` is refused
+// (LM then stops with UserAsked). The last point evaluated is remembered,
+// so the Jacobian at a point the optimiser has just evaluated costs n
+// evaluations, not n + 1.
 struct CalibrationFunctor : Eigen::DenseFunctor<double> {
   Calibration* cal;
   const std::function<void(long)>* on_eval;
+  long limit = 0;
+  mutable Eigen::VectorXd last_x, last_f;
+  mutable bool have_last = false;
+
   CalibrationFunctor(Calibration* c, const std::function<void(long)>* tick, int n, int m)
       : Eigen::DenseFunctor<double>(n, m), cal(c), on_eval(tick) {}
-  int operator()(const InputType& x, ValueType& f) const {
+
+  bool cached(const InputType& x) const { return have_last && last_x.size() == x.size() && last_x == x; }
+
+  void evaluate(const InputType& x, ValueType& f) const {
     cal->residuals(x.data(), f.data());
+    last_x = x;
+    last_f = f;
+    have_last = true;
     if (*on_eval) (*on_eval)(cal->evals_);
+  }
+
+  int operator()(const InputType& x, ValueType& f) const {
+    if (cached(x)) {
+      f = last_f;
+      return 0;
+    }
+    if (cal->evals_ + 1 > limit) return -1;
+    evaluate(x, f);
     return 0;
+  }
+
+  int df(const InputType& x0, JacobianType& jac) const {
+    const long n = x0.size();
+    if (cal->evals_ + n + (cached(x0) ? 0 : 1) > limit) return -1;
+    ValueType f0(values()), f1(values());
+    if (operator()(x0, f0) < 0) return -1;
+    const double eps = std::sqrt(std::max(1e-6, Eigen::NumTraits<double>::epsilon()));
+    InputType x = x0;
+    for (long j = 0; j < n; ++j) {
+      double h = eps * std::fabs(x[j]);
+      if (h == 0.0) h = eps;
+      x[j] += h;
+      evaluate(x, f1);
+      x[j] = x0[j];
+      jac.col(j) = (f1 - f0) / h;
+    }
+    // Counted as evaluations by LM (its own cap is not used).
+    return static_cast<int>(n);
   }
 };
 
@@ -150,33 +194,44 @@ std::vector<double> Calibration::start_residuals() {
   return f;
 }
 
+long Calibration::min_evaluations() const { return static_cast<long>(fit_.size()) + 2; }
+
 CalibrationResult Calibration::run(int max_evals, const std::function<void(long)>& on_eval) {
   const int n = static_cast<int>(fit_.size());
   const int m = residual_count();
   if (m == 0) throw InputError("no scene to fit on");
+  if (max_evals < min_evaluations())
+    throw InputError("a fit of " + std::to_string(n) + " parameter(s) needs at least " +
+                     std::to_string(min_evaluations()) +
+                     " plant evaluations (the start, and the residuals and the Jacobian at the result), not " +
+                     std::to_string(max_evals));
+  CalibrationFunctor fn(this, &on_eval, n, m);
+  // The evaluations at the result (its residuals and its Jacobian) are
+  // kept out of the optimiser's share, so the whole fit stays within
+  // max_evals plant evaluations.
+  fn.limit = max_evals - (n + 1);
   Eigen::VectorXd theta = Eigen::VectorXd::Zero(n);
   Eigen::VectorXd f0(m);
-  residuals(theta.data(), f0.data());
+  fn(theta, f0);
 
-  CalibrationFunctor fn(this, &on_eval, n, m);
-  Eigen::NumericalDiff<CalibrationFunctor> nd(fn, 1e-6);
-  Eigen::LevenbergMarquardt<Eigen::NumericalDiff<CalibrationFunctor>> lm(nd);
-  lm.setMaxfev(max_evals);
+  Eigen::LevenbergMarquardt<CalibrationFunctor> lm(fn);
+  lm.setMaxfev(std::numeric_limits<int>::max());
   lm.setXtol(1e-8);
   lm.setFtol(1e-10);
   const auto status = lm.minimize(theta);
 
+  fn.limit = max_evals;
   Eigen::VectorXd f1(m);
-  residuals(theta.data(), f1.data());
+  fn(theta, f1);
+  // Jacobian at the optimum, in the unknowns theta: dvalue = value_slope dtheta.
+  Eigen::MatrixXd J(m, n);
+  fn.df(theta, J);
   CalibrationResult r;
   r.status = static_cast<int>(status);
   r.iterations = static_cast<long>(lm.iterations());
   r.residuals = m;
   r.cost_start = f0.squaredNorm();
   r.cost_end = f1.squaredNorm();
-  // Jacobian at the optimum, in the unknowns theta: dvalue = value_slope dtheta.
-  Eigen::MatrixXd J(m, n);
-  nd.df(theta, J);
   const double dof = std::max(1, m - n);
   const double s2 = r.cost_end / dof;
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(J.transpose() * J);
@@ -226,11 +281,35 @@ CalibrationResult Calibration::run(int max_evals, const std::function<void(long)
   return r;
 }
 
+namespace {
+
+// C++17's keywords and alternative tokens: not names of a function.
+constexpr const char* kCppKeywords[] = {
+    "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break", "case", "catch",
+    "char", "char16_t", "char32_t", "char8_t", "class", "co_await", "co_return", "co_yield", "compl", "concept",
+    "const", "const_cast", "consteval", "constexpr", "constinit", "continue", "decltype", "default", "delete", "do",
+    "double", "dynamic_cast", "else", "enum", "explicit", "export", "extern", "false", "float", "for", "friend",
+    "goto", "if", "inline", "int", "long", "mutable", "namespace", "new", "noexcept", "not", "not_eq", "nullptr",
+    "operator", "or", "or_eq", "private", "protected", "public", "register", "reinterpret_cast", "requires",
+    "return", "short", "signed", "sizeof", "static", "static_assert", "static_cast", "struct", "switch",
+    "template", "this", "thread_local", "throw", "true", "try", "typedef", "typeid", "typename", "union",
+    "unsigned", "using", "virtual", "void", "volatile", "wchar_t", "while", "xor", "xor_eq"};
+
+}  // namespace
+
 bool is_cpp_identifier(const std::string& name) {
-  bool ident = !name.empty() && !(name[0] >= '0' && name[0] <= '9');
+  bool ident = !name.empty() && name.size() <= 64 && !(name[0] >= '0' && name[0] <= '9');
   for (const char ch : name)
     ident = ident && ((ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '_');
-  return ident;
+  if (!ident) return false;
+  // Reserved to the implementation: a leading underscore and a capital, or
+  // two underscores anywhere.
+  if ((name[0] == '_' && name.size() > 1 && name[1] >= 'A' && name[1] <= 'Z') ||
+      name.find("__") != std::string::npos)
+    return false;
+  for (const char* k : kCppKeywords)
+    if (name == k) return false;
+  return true;
 }
 
 namespace {

@@ -24,7 +24,9 @@ double rel_rms(const std::vector<double>& plant, const std::vector<double>& refe
     r2 += reference[i] * reference[i];
     ++used;
   }
-  return r2 > 0 ? std::sqrt(d2 / r2) : std::sqrt(d2 / static_cast<double>(std::max<std::size_t>(1, used)));
+  // No sample where both are finite: nothing to measure (NaN, reported null).
+  if (used == 0) return std::nan("");
+  return r2 > 0 ? std::sqrt(d2 / r2) : std::sqrt(d2 / static_cast<double>(used));
 }
 
 ReferenceScale reference_scale(const std::vector<double>& reference) {
@@ -111,7 +113,8 @@ Comparison compare(const Series& plant_all, const Series& ref_all, std::size_t n
     e.rel_rms = rel_rms(p, r);
     e.plant_ss = mean_from(p, ss_from);
     e.reference_ss = mean_from(r, ss_from);
-    e.ss_rel = e.reference_ss != 0 ? (e.plant_ss - e.reference_ss) / std::fabs(e.reference_ss) : 0.0;
+    // Relative to a reference that is 0 (or not measured) it has no value.
+    e.ss_rel = e.reference_ss != 0 ? (e.plant_ss - e.reference_ss) / std::fabs(e.reference_ss) : std::nan("");
     c.rows.push_back(e);
   };
   row("omega1", "rad/s", plant.omega1_rad_s, ref.omega1_rad_s, from);

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <sstream>
 #include <string>
 #include <type_traits>
 
@@ -130,6 +131,135 @@ TEST_SUITE("cache") {
     // Another input is another file.
     p.friction.mu0 *= 1.01;
     CHECK_FALSE(reference_run(p, r, dir).from_cache);
+    std::filesystem::remove_all(dir);
+  }
+
+  TEST_CASE("an entry is checked: each kind of damage is found and named, and the run is made again") {
+    const std::string dir = scratch_dir("cache_checks");
+    cvt::mbd::MbdParams p = cvt::mbd::seed_case(1);
+    p.settle_s = 0.02;
+    cvt::mbd::RunOptions r;
+    r.t_end_s = 0.01;
+    r.sample_s = 1e-3;
+    const ReferenceRun made = reference_run(p, r, dir);
+    REQUIRE(made.series.size() == 11u);
+    CHECK(made.cache_problem.empty());
+    const std::string key = reference_key(p, r);
+    const std::string base = dir + "/" + key_hash(key);
+    std::string key_file, csv_file;
+    format_cache_entry(made, key, key_file, csv_file);
+    // What reference_run stored is what format_cache_entry makes.
+    {
+      std::ifstream k(base + ".key"), c(base + ".csv");
+      std::stringstream ks, cs;
+      ks << k.rdbuf();
+      cs << c.rdbuf();
+      CHECK(ks.str() == key_file);
+      CHECK(cs.str() == csv_file);
+    }
+    ReferenceRun back;
+    REQUIRE(parse_cache_entry(key_file, csv_file, key, r, "E", back) == "");
+    CHECK(back.series.size() == 11u);
+    CHECK(back.steps == made.steps);
+    CHECK(back.ledger_residual_rel == made.ledger_residual_rel);
+    // The csv with a change, and the key file with that change's checksum:
+    // the cells and rows are checked for themselves, not only the sum.
+    const auto resummed = [&](const std::string& csv) {
+      std::string k = key_file;
+      const std::size_t at = k.find("entry csv_fnv1a64 ") + 18;
+      k.replace(at, 16, key_hash(csv));
+      return k;
+    };
+    const auto problem = [&](const std::string& csv, const std::string& kf) {
+      ReferenceRun out;
+      return parse_cache_entry(kf, csv, key, r, "E", out);
+    };
+    const std::size_t row3 = [&] {
+      std::size_t at = 0;
+      for (int i = 0; i < 3; ++i) at = csv_file.find('\n', at) + 1;
+      return at;
+    }();  // the start of the third data row (after the header and two rows)
+    const std::size_t row3_end = csv_file.find('\n', row3);
+    const std::string first_cell = csv_file.substr(row3, csv_file.find(',', row3) - row3);
+    const auto with_row3 = [&](const std::string& line) {
+      return csv_file.substr(0, row3) + line + csv_file.substr(row3_end);
+    };
+    const std::string row3_text = csv_file.substr(row3, row3_end - row3);
+    const std::size_t second = row3_text.find(',') + 1;
+    const std::string omega = row3_text.substr(second, row3_text.find(',', second) - second);
+    // A cut CSV (a full disk, a killed writer): the checksum no longer fits.
+    CHECK(problem(csv_file.substr(0, csv_file.size() - 40), key_file).find("E.csv: its bytes do not match") == 0);
+    // Rows dropped at a row boundary, with a consistent key file: short of the span.
+    {
+      std::string cut = csv_file.substr(0, row3);
+      std::string kf = resummed(cut);
+      kf.replace(kf.find("entry rows 11"), 13, "entry rows 2");
+      CHECK(problem(cut, kf).find("E.csv: 2 rows where the run's span has 11 samples") == 0);
+    }
+    // A non-numeric cell, a ragged row, nan and 1e308 where not allowed.
+    std::string bad = with_row3(first_cell + ",abc" + row3_text.substr(row3_text.find(',', second)));
+    CHECK(problem(bad, resummed(bad)).find("E.csv: row 3: 'abc' is not a number") == 0);
+    bad = with_row3(row3_text + ",1");
+    CHECK(problem(bad, resummed(bad)).find("E.csv: row 3: not 9 cells") == 0);
+    bad = with_row3(row3_text.substr(0, row3_text.rfind(',')));
+    CHECK(problem(bad, resummed(bad)).find("E.csv: row 3: not 9 cells") == 0);
+    bad = with_row3(first_cell + ",nan" + row3_text.substr(row3_text.find(',', second)));
+    CHECK(problem(bad, resummed(bad)).find("E.csv: row 3: 'nan' is out of range") == 0);
+    bad = with_row3(first_cell + ",1e308" + row3_text.substr(row3_text.find(',', second)));
+    CHECK(problem(bad, resummed(bad)).find("E.csv: row 3: '1e308' is out of range") == 0);
+    // A row at another time than the run samples.
+    bad = with_row3("0.0025" + row3_text.substr(row3_text.find(',')));
+    CHECK(problem(bad, resummed(bad)).find("E.csv: row 3: t = 0.0025 s") == 0);
+    // The key file: another run's key, no checksum.
+    CHECK(problem(csv_file, "x" + key_file).find("E.key: the stored key is not this run's") == 0);
+    CHECK(problem(csv_file, key).find("E.key: no row count") == 0);
+    // The driver's slip may be nan (no bolt in the wrap): still an entry.
+    {
+      std::string ok = csv_file;
+      const std::size_t slip = [&] {
+        std::size_t at = row3;
+        for (int i = 0; i < 5; ++i) at = ok.find(',', at) + 1;
+        return at;
+      }();
+      ok.replace(slip, ok.find(',', slip) - slip, "nan");
+      CHECK(problem(ok, resummed(ok)) == "");
+    }
+    CHECK(omega.size() > 0);
+    // Through reference_run: a damaged entry is named and run again, and
+    // the new entry is whole.
+    std::ofstream(base + ".csv") << bad;
+    const ReferenceRun again = reference_run(p, r, dir);
+    CHECK_FALSE(again.from_cache);
+    CHECK(again.cache_problem.find(base + ".csv: ") == 0);
+    CHECK(again.series.t_s == made.series.t_s);
+    CHECK(again.series.omega1_rad_s == made.series.omega1_rad_s);
+    const ReferenceRun hit = reference_run(p, r, dir);
+    CHECK(hit.from_cache);
+    CHECK(hit.cache_problem.empty());
+    CHECK(std::isnan(hit.cpu_s));  // nothing was spent now
+    CHECK(hit.steps == made.steps);
+    // No temporary is left beside the entry.
+    int files = 0;
+    for (const auto& e : std::filesystem::directory_iterator(dir)) {
+      ++files;
+      CHECK(e.path().filename().string()[0] != '.');
+    }
+    CHECK(files == 2);
+    std::filesystem::remove_all(dir);
+  }
+
+  TEST_CASE("a run that its step cap ended is used but not stored") {
+    const std::string dir = scratch_dir("cache_cap");
+    cvt::mbd::MbdParams p = cvt::mbd::seed_case(1);
+    p.settle_s = 0.02;
+    cvt::mbd::RunOptions r;
+    r.t_end_s = 0.02;
+    r.max_steps = 200;  // about 500 are needed
+    const ReferenceRun capped = reference_run(p, r, dir);
+    CHECK(capped.failure.find("step cap") != std::string::npos);
+    CHECK(capped.series.size() >= 2u);
+    CHECK(capped.series.size() < 21u);
+    CHECK(std::filesystem::is_empty(dir));
     std::filesystem::remove_all(dir);
   }
 

@@ -56,6 +56,44 @@ TEST_SUITE("calibration") {
     CHECK(r.residuals == 4 * 31);  // 301 frames, every 10th
   }
 
+  TEST_CASE("--max-evals counts every plant evaluation of the fit, and a cap too small for one is refused") {
+    const cvt::Scene start = short_gross_slip();
+    cvt::Scene truth = start;
+    truth.params.normal_load_factor = 0.8 * start.params.normal_load_factor;
+    const ReferenceRun ref = plant_as_reference(truth);
+    for (const int cap : {3, 4, 7, 12}) {
+      Calibration cal({"normal_load_factor", "k1_N_m"}, start.params);
+      cal.add_case("gross-slip", start, ref, 10);
+      CHECK(cal.min_evaluations() == 4);
+      if (cap < 4) {
+        CHECK_THROWS_AS(cal.run(cap), InputError);
+        continue;
+      }
+      long seen = 0;
+      const CalibrationResult r = cal.run(cap, [&](long n) { seen = n; });
+      INFO("cap " << cap);
+      CHECK(r.evaluations <= cap);
+      CHECK(seen == r.evaluations);
+      // The smallest caps stop the optimiser (Eigen's UserAsked) before it converges.
+      if (cap <= 7) CHECK(r.status == 9);
+      CHECK(r.params.size() == 2u);
+    }
+    // With room, the fit converges and stays within its count.
+    Calibration cal({"normal_load_factor"}, start.params);
+    cal.add_case("gross-slip", start, ref, 10);
+    const CalibrationResult r = cal.run(60);
+    CHECK(r.evaluations <= 60);
+    CHECK(r.status != 9);
+    CHECK(r.params[0].value == doctest::Approx(truth.params.normal_load_factor).epsilon(1e-5));
+  }
+
+  TEST_CASE("the header's function name: an identifier, not a keyword nor reserved") {
+    for (const char* ok : {"apply", "apply_tension", "Apply2", "_x"}) CHECK_MESSAGE(is_cpp_identifier(ok), ok);
+    for (const char* bad : {"class", "int", "namespace", "and", "", "2x", "a-b", "__x", "_X", "a b"})
+      CHECK_FALSE_MESSAGE(is_cpp_identifier(bad), bad);
+    CHECK_FALSE(is_cpp_identifier(std::string(65, 'a')));
+  }
+
   TEST_CASE("each case's cost is the sum of validate's squared relative RMS errors") {
     const cvt::Scene start = short_gross_slip();
     cvt::Scene truth = start;

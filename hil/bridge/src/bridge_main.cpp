@@ -16,6 +16,7 @@
 #include "cvtplant/sil/latency_stats.hpp"
 #include "cvtplant/port/posix_clock.hpp"
 #include "stop_flag.hpp"
+#include "cvtplant/files/paths.hpp"
 #include "cvtplant/port/socketcan_transport.hpp"
 
 namespace {
@@ -115,6 +116,17 @@ Options parse(int argc, char** argv) {
     }
   }
   if (cvt::find_builtin_scene(o.scene.c_str()) == nullptr) bad_usage("--scene: no built-in scene '" + o.scene + "'");
+  // The log, the summary and the ready file are three files (docs/cli.md#files).
+  try {
+    cvt::files::CommandFiles files;
+    for (int i = 1; i + 1 < argc; ++i) {
+      const std::string a = argv[i];
+      if (a == "--log" || a == "--summary" || a == "--ready-file") files.output(a, argv[i + 1]);
+      if (a.rfind("--", 0) == 0) ++i;
+    }
+  } catch (const cvt::files::PathError& e) {
+    bad_usage(e.what());
+  }
   return o;
 }
 

@@ -9,6 +9,10 @@
 
 namespace cvt::sil::harness {
 
+std::string trace_path(const RunConfig& cfg, const Scenario& sc, bool realtime) {
+  return cfg.out_dir + "/sil-" + sc.name + (realtime ? "-realtime" : "") + ".csv";
+}
+
 ScenarioResult run_lockstep(const Scenario& sc, HarnessNode& h, FaultInjector& hf, ControllerUnderTest& ctl,
                             const RunConfig& cfg) {
   cvt::port::PosixMonotonicClock clock;
@@ -54,7 +58,7 @@ ScenarioResult run_lockstep(const Scenario& sc, HarnessNode& h, FaultInjector& h
   if (n.no_reply == 0 && !h.request(cvt::can::SimRequest::None, 0, cvt::can::SceneId::Keep)) ++n.no_reply;
   res.wall_s = static_cast<double>(clock.now_ns() - t0) * 1e-9;
 
-  const std::string csv = cfg.out_dir + "/sil-" + sc.name + ".csv";
+  const std::string csv = trace_path(cfg, sc, false);
   const bool trace_written = write_trace(csv, trace);
 
   n.resends = h.resends() - resends0;
@@ -111,7 +115,7 @@ ScenarioResult run_realtime(const Scenario& sc, HarnessNode& h, ControllerUnderT
   answered = answered && h.pause();
   res.wall_s = static_cast<double>(wall.now_ns() - w0) * 1e-9;
 
-  const std::string csv = cfg.out_dir + "/sil-" + sc.name + "-realtime.csv";
+  const std::string csv = trace_path(cfg, sc, true);
   auto& c = res.checks;
   c.push_back({"trace_written", write_trace(csv, trace), csv});
   // Functional criteria: judged in every run.

@@ -12,11 +12,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "cvtplant/files/paths.hpp"
+#include "cvtplant/files/replace.hpp"
 #include "cvtplant/port/socketcan_transport.hpp"
 #include "cvtplant/sil/harness/example_controller.hpp"
 #include "cvtplant/sil/harness/report.hpp"
@@ -70,7 +71,7 @@ int main(int argc, char** argv) {
   if (cmd != "run" && cmd != "bench") bad_usage("unknown subcommand '" + cmd + "'");
   std::string iface = "vcan0", scenario = "all", out_dir = ".", junit, mode = "lockstep";
   long steps = 5000;
-  bool with_controller = false, loopback = false;
+  bool with_controller = false, loopback = false, junit_given = false;
   double reply_timeout_ms = 0;  // 0: the default for the transport
   std::int64_t frame_cost_ns = 0;
   cvtctl::ClampLawParams law;
@@ -93,7 +94,10 @@ int main(int argc, char** argv) {
     if (a == "--iface") iface = v;
     else if (a == "--scenario") scenario = v;
     else if (a == "--out") out_dir = v;
-    else if (a == "--junit") junit = v;
+    else if (a == "--junit") {
+      junit = v;
+      junit_given = true;
+    }
     else if (a == "--loopback-frame-cost-us") {
       const double us = std::strtod(v.c_str(), &end);
       if (end == v.c_str() || *end != '\0' || !(us >= 0 && us <= 100000))
@@ -130,12 +134,34 @@ int main(int argc, char** argv) {
   if (frame_cost_ns > 0 && (!loopback || !realtime_runs))
     bad_usage("--loopback-frame-cost-us: needs --loopback and --mode realtime or both");
   if (reply_timeout_ms == 0) reply_timeout_ms = loopback ? 20 : 1000;
+  RunConfig cfg;
+  cfg.out_dir = out_dir;
+  cfg.capacity = law;
+  // Every file the run writes, before it starts: the JUnit report never
+  // over a trace, no path empty or with a control character
+  // (docs/cli.md#files).
+  if (cmd == "run") {
+    try {
+      cvt::files::CommandFiles files;
+      if (const std::string why = cvt::files::path_problem(out_dir); !why.empty())
+        throw cvt::files::PathError("--out: " + why);
+      for (const Scenario& s : chosen) {
+        if (lockstep_runs) files.output("--out (scenario " + std::string(s.name) + ")", trace_path(cfg, s, false));
+        if (realtime_runs && s.ratio_target)
+          files.output("--out (scenario " + std::string(s.name) + ", real time)", trace_path(cfg, s, true));
+      }
+      if (!junit.empty() || junit_given) files.output("--junit", junit);
+    } catch (const cvt::files::PathError& e) {
+      bad_usage(e.what());
+    }
+  }
   // Traces are part of the result: a directory that cannot be made is an
-  // error now, not a silently missing CSV later.
-  std::error_code mkdir_error;
-  std::filesystem::create_directories(out_dir, mkdir_error);
-  if (mkdir_error) {
-    std::fprintf(stderr, "cvtplant-sil: --out %s: %s\n", out_dir.c_str(), mkdir_error.message().c_str());
+  // error now, not a silently missing CSV later. One that another run makes
+  // at the same moment is fine.
+  try {
+    cvt::files::make_directories(out_dir, "--out");
+  } catch (const cvt::files::PathError& e) {
+    std::fprintf(stderr, "cvtplant-sil: %s\n", e.what());
     return 1;
   }
 
@@ -178,9 +204,6 @@ int main(int argc, char** argv) {
   // Real-time pacing: the bridge process on the wall clock, or the
   // in-process bridge one frame per virtual millisecond.
   const RealTimeBus rt_bus = plant->realtime();
-  RunConfig cfg;
-  cfg.out_dir = out_dir;
-  cfg.capacity = law;
   std::vector<ScenarioResult> results;
   bool all_pass = true;
   for (const Scenario& s : chosen) {

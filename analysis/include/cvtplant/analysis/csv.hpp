@@ -4,6 +4,7 @@
 // header contains no comma). Blank lines and lines starting with '#' are skipped.
 // Every error names the file and the 1-based line number.
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -15,11 +16,17 @@ struct CsvColumn {
 };
 
 // Throws InputError: unreadable file, a directory or device, empty file,
-// missing column (the message lists the columns present), short row,
-// non-numeric cell (quoted up to 40 characters), NaN or infinity; LimitError
-// once more than `max_bytes` have been read (0: no cap), so an endless
-// stream such as /dev/zero stops.
+// missing column (the message lists the columns present), a row with
+// another number of cells than the header (shorter or longer), non-numeric
+// cell (quoted up to 40 characters), NaN or infinity; LimitError once more
+// than `max_bytes` have been read (0: no cap), so an endless stream such as
+// /dev/zero stops. A UTF-8 byte-order mark before the header is skipped.
 CsvColumn read_csv_column(const std::string& path, const std::string& column, std::size_t max_bytes = 0);
+
+// Several columns in one pass over the file, so a pipe can be read: `pick`
+// gets the header's names and returns the columns wanted (in that order).
+using ColumnPicker = std::function<std::vector<std::string>(const std::vector<std::string>& header)>;
+std::vector<CsvColumn> read_csv_columns(const std::string& path, const ColumnPicker& pick, std::size_t max_bytes = 0);
 
 // Header names of a CSV file (for --help style listings and error messages).
 std::vector<std::string> read_csv_header(const std::string& path);

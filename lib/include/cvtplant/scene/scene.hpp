@@ -105,6 +105,48 @@ inline double profile_bound(const Profile& p) {
   return 0.0;
 }
 
+// The inputs' ranges, one per quantity for every front door that sets it:
+// scene files (validate_scene), `cvtplant mbd`'s flags and the reference's
+// mapping of a scene (docs/rom.md#scene-validation). Beyond them the plant
+// and the multibody reference leave the regime they are built for (the
+// seed's 100 N m and 3.3 kN), and a run would end in a fault or crawl.
+namespace input_limits {
+inline constexpr double kTorque_Nm = 1000.0;      // |tau_in|, |tau_load|
+inline constexpr double kClamp_N = 1e5;           // clamping force, [0, 1e5] N
+inline constexpr double kRoadT0_Nm = 1000.0;      // road load: T0 in [0, 1000] N m
+inline constexpr double kRoadCv_Nms_rad = 100.0;  // c_v in [0, 100] N m s/rad
+inline constexpr double kRoadCa_Nms2_rad2 = 10.0; // c_a in [0, 10] N m s^2/rad^2
+// w_eps in [1e-3, 1000] rad/s: below 1e-3 rad/s the tanh is a sign
+// function at the integrators' resolution of the driven speed, and the
+// multibody reference's steps collapse (docs/mbd.md#loads).
+inline constexpr double kRoadWepsMin_rad_s = 1e-3;
+inline constexpr double kRoadWepsMax_rad_s = 1000.0;
+}  // namespace input_limits
+
+// The smallest and largest value a profile takes at any time.
+inline void profile_range(const Profile& p, double& lo, double& hi) {
+  auto take = [&](double v) {
+    lo = v < lo ? v : lo;
+    hi = v > hi ? v : hi;
+  };
+  lo = hi = p.value;
+  switch (p.kind) {
+    case ProfileKind::constant: break;
+    case ProfileKind::step:
+    case ProfileKind::ramp: take(p.value2); break;
+    case ProfileKind::sine: {
+      const double a = p.amplitude < 0 ? -p.amplitude : p.amplitude;
+      lo = p.value - a;
+      hi = p.value + a;
+      break;
+    }
+    case ProfileKind::table:
+      if (p.n >= 1) lo = hi = p.v[0];
+      for (int i = 1; i < p.n && i < kMaxProfilePoints; ++i) take(p.v[i]);
+      break;
+  }
+}
+
 enum class ScalarKind : std::uint8_t { f64, f32, q16_16 };
 inline constexpr const char* scalar_kind_name(ScalarKind s) {
   return s == ScalarKind::f64 ? "double" : s == ScalarKind::f32 ? "float" : "fixed";
@@ -179,6 +221,13 @@ inline SceneIssue check_profile(const Profile& p, const char* field, bool non_ne
       }
       break;
   }
+  double lo = 0, hi = 0;
+  profile_range(p, lo, hi);
+  if (non_negative) {
+    if (!(hi <= input_limits::kClamp_N)) return bad(field, "must stay within [0, 1e5] N");
+  } else if (!(lo >= -input_limits::kTorque_Nm && hi <= input_limits::kTorque_Nm)) {
+    return bad(field, "must stay within [-1000, 1000] N m");
+  }
   return SceneIssue{};
 }
 }  // namespace scene_detail
@@ -230,10 +279,16 @@ inline SceneIssue validate_scene(const Scene& s) {
     if (!(fin(p.K_ax_N_m) && p.K_ax_N_m > 0)) return bad("K_ax_N_m", "must be > 0");
   }
   if (s.features & rom_feature::road_load) {
-    if (!(fin(p.road_T0_Nm) && p.road_T0_Nm >= 0)) return bad("road_T0_Nm", "must be >= 0");
-    if (!(fin(p.road_cv_Nms_rad) && p.road_cv_Nms_rad >= 0)) return bad("road_cv_Nms_rad", "must be >= 0");
-    if (!(fin(p.road_ca_Nms2_rad2) && p.road_ca_Nms2_rad2 >= 0)) return bad("road_ca_Nms2_rad2", "must be >= 0");
-    if (!(fin(p.road_w_eps_rad_s) && p.road_w_eps_rad_s > 0)) return bad("road_w_eps_rad_s", "must be > 0");
+    namespace lim = input_limits;
+    if (!(fin(p.road_T0_Nm) && p.road_T0_Nm >= 0 && p.road_T0_Nm <= lim::kRoadT0_Nm))
+      return bad("road_T0_Nm", "must be in [0, 1000] N m");
+    if (!(fin(p.road_cv_Nms_rad) && p.road_cv_Nms_rad >= 0 && p.road_cv_Nms_rad <= lim::kRoadCv_Nms_rad))
+      return bad("road_cv_Nms_rad", "must be in [0, 100] N m s/rad");
+    if (!(fin(p.road_ca_Nms2_rad2) && p.road_ca_Nms2_rad2 >= 0 && p.road_ca_Nms2_rad2 <= lim::kRoadCa_Nms2_rad2))
+      return bad("road_ca_Nms2_rad2", "must be in [0, 10] N m s^2/rad^2");
+    if (!(fin(p.road_w_eps_rad_s) && p.road_w_eps_rad_s >= lim::kRoadWepsMin_rad_s &&
+          p.road_w_eps_rad_s <= lim::kRoadWepsMax_rad_s))
+      return bad("road_w_eps_rad_s", "must be in [0.001, 1000] rad/s");
   }
   if (s.features & rom_feature::wedging) {
     if (!(s.features & rom_feature::axial)) return bad("features", "wedging needs the axial feature");

@@ -27,20 +27,49 @@ struct ReferenceRun {
   // Movable sheave openings [m] per sample (docs/mbd.md#clamped-sheaves).
   std::vector<double> sheave1_m, sheave2_m;
   bool from_cache = false;
-  double cpu_s = 0, wall_s = 0, ledger_residual_rel = 0;
+  // The work of this call: NaN when the run came from the cache (nothing
+  // was measured now).
+  double cpu_s = 0, wall_s = 0;
+  // The run's, whether made now or stored with it.
+  double ledger_residual_rel = 0;
   long long steps = 0;
   // A run that stopped early (a link left the drive, the ledger, the step
   // cap): the reason, and `series` holds the samples up to then.
   std::string failure;
+  // An entry with this run's key that failed its checks and was replaced
+  // by a new run: "reference-cache/<hash>.csv: row 17: 'x' is not a number".
+  std::string cache_problem;
 };
 
-// The reference run for (p, r): read from `cache_dir` if a run with the same
-// key is there, else run (on_progress gets the simulated time now and then)
-// and stored. A run that stops early is kept and stored with its reason;
-// one that makes fewer than two samples throws RunError; a cache that cannot
-// be written throws InputError.
+// The reference run for (p, r): read from `cache_dir` if an entry with the
+// same key is there and passes its checks (parse_cache_entry), else run
+// (on_progress gets the simulated time now and then) and stored. A run that
+// stops early is kept and stored with its reason, unless it was the step
+// cap that stopped it (the cap is not part of the key: a larger one would
+// go further); one that makes fewer than two samples throws RunError; a
+// cache that cannot be written throws InputError. The entry's files are
+// written whole by a temporary and a rename, the key last, so a run killed
+// in the middle, or two runs at once, never leave half an entry.
 ReferenceRun reference_run(const cvt::mbd::MbdParams& p, const cvt::mbd::RunOptions& r, const std::string& cache_dir,
                            const cvt::mbd::ProgressSink& on_progress = {});
+
+// The checks of a cache entry (docs/validation.md#cache): `key_file` must be
+// `key` followed by the entry's lines (its row count, the FNV-1a 64 of the
+// CSV's bytes, the run's steps and ledger residual, its failure if any);
+// `csv_file` must have that checksum, the cache's header, and rows of nine
+// numbers each (finite, |v| <= 1e12; the two slip columns may be nan: no
+// bolt in the wrap) at the run's sample times: t = 0, sample_s, ... up to
+// t_end_s, every one of them unless the entry records a failure. Returns
+// "" and fills `out` when the entry passes, else the first problem found
+// (naming "<name>.key" or "<name>.csv" and the row). Never throws on any
+// bytes.
+std::string parse_cache_entry(const std::string& key_file, const std::string& csv_file, const std::string& key,
+                              const cvt::mbd::RunOptions& r, const std::string& name, ReferenceRun& out);
+
+// The files of an entry for `run` (made with options r): the key file's
+// text and the CSV's, as reference_run stores them.
+void format_cache_entry(const ReferenceRun& run, const std::string& key, std::string& key_file,
+                        std::string& csv_file);
 
 // The first sample time at which the reference's movable sheave (0 driver,
 // 1 driven) is within 0.1 mm of its end stop (the chain at a ratio limit: the

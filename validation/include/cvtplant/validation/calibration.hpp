@@ -81,9 +81,16 @@ class Calibration {
   // fitted up to there).
   void add_case(const std::string& name, const cvt::Scene& plant_scene, const ReferenceRun& reference, int every);
 
-  // Runs the fit with at most max_evals plant evaluations of the optimiser;
-  // on_eval gets the count after each.
+  // Runs the fit with at most max_evals plant evaluations in all (each a
+  // run of every case's plant): the start, the optimiser's steps and
+  // Jacobians, and the residuals and Jacobian at the result. The optimiser
+  // stops with status 9 (Eigen's UserAsked) when its share is spent.
+  // on_eval gets the count after each. Throws InputError when max_evals is
+  // below min_evaluations().
   CalibrationResult run(int max_evals, const std::function<void(long evaluations)>& on_eval = {});
+  // The fewest evaluations a fit can make: the start, and n + 1 at the
+  // result (n the fitted parameters).
+  long min_evaluations() const;
 
   // The residual vector at the start's values (for tests and reports): per
   // case, per quantity, per sample; its squared norm is the sum over the
@@ -107,7 +114,8 @@ class Calibration {
   void residuals(const double* theta, double* f);
 };
 
-// Whether name is a C++ identifier (the header's function name).
+// Whether name can be the header's function name: a C++ identifier of at
+// most 64 characters, not a keyword nor reserved to the implementation.
 bool is_cpp_identifier(const std::string& name);
 
 // The parameter file of a fit (TOML [params], each value with its

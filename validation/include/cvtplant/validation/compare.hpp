@@ -18,7 +18,8 @@ inline constexpr double kGrossSlip_m_s = 1.0;
 // and reference are finite (a NaN marks a missing value: the reference's
 // wrap slip with no bolt in the wrap),
 //   sqrt(sum (plant - reference)^2 / sum reference^2),
-// or the absolute RMS of the difference where the reference is 0 throughout.
+// or the absolute RMS of the difference where the reference is 0 throughout;
+// NaN (not computed) when no sample has both finite.
 double rel_rms(const std::vector<double>& plant, const std::vector<double>& reference);
 
 // The reference's side of rel_rms, for a fit whose reference is fixed while
@@ -39,7 +40,9 @@ void relative_residuals(const std::vector<double>& plant, const std::vector<doub
                         const ReferenceScale& scale, double* out);
 
 // Error of one quantity: relative RMS over the run, and the mean of each
-// model over the steady-state window.
+// model over the steady-state window. A value that could not be computed
+// is NaN (no common sample: the ratio of a run whose driven pulley never
+// turned; ss_rel against a reference mean of 0), shown as null or n/a.
 struct ErrorRow {
   std::string quantity, unit;
   double rel_rms = 0;
@@ -50,7 +53,7 @@ struct Comparison {
   std::vector<ErrorRow> rows;
   double compared_s = 0;  // the samples compared: t in [0, compared_s]
   double window_s = 0;  // steady-state window: the last second (or the last half of a shorter run)
-  double ripple_plant_N = 0, ripple_reference_N = 0;  // F_ax1 peak to peak over the window
+  double ripple_plant_N = 0, ripple_reference_N = 0;  // F_ax1 peak to peak over the window (NaN: no sample)
   // Time of the first sample at which the whole driver wrap slides by more
   // than kGrossSlip_m_s (|wrap_slip_m_s|; negative: never).
   double gross_slip_plant_s = -1, gross_slip_reference_s = -1;

@@ -24,6 +24,9 @@ struct RunConfig {
   cvtctl::ClampLawParams capacity{};
 };
 
+// Where a run of `sc` writes its trace: OUT/sil-NAME.csv, OUT/sil-NAME-realtime.csv.
+std::string trace_path(const RunConfig& cfg, const Scenario& sc, bool realtime);
+
 // `harness_faults` is the harness's own transport wrapper, which the fault
 // scenarios arm; the harness node sends and receives through it.
 ScenarioResult run_lockstep(const Scenario& sc, HarnessNode& h, FaultInjector& harness_faults,
