@@ -20,8 +20,9 @@ INCLUDE_DIRS = {
     "mbd": ["mbd/include"],
     "tools": ["tools/cvtplant"],
 }
-# Module -> the modules it may include (besides itself). tests/ and bench/
-# may use everything and are not checked.
+# Module -> the modules it may include (besides itself). A module's own tests
+# (<module>/tests) are held to the module's rules; tests/ and bench/ may use
+# everything and are not checked.
 ALLOWED = {
     "lib": [],
     "port": ["lib"],
@@ -53,6 +54,9 @@ def owner(root, header):
 def check_sources(root):
     bad = []
     for module, dirs in SOURCE_DIRS.items():
+        tests = f"{module}/tests"
+        if not any(tests == d or tests.startswith(d + "/") for d in dirs):
+            dirs = dirs + [tests]
         for d in dirs:
             base = root / d
             if not base.is_dir():
