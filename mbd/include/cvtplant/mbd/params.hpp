@@ -110,9 +110,6 @@ struct MbdParams {
   double settle_s = 0.1;
   double settle_drag_Ns_m = 20.0;
   StartAtSpeed start;  // after the settle; inactive: released from rest
-  // --- numerics: the error-weight scale of the links' rotation rates
-  // (docs/mbd.md#tolerances).
-  double tolerance_link_rate_rad_s = 10.0;
   // Clamped sheaves: the chain wrapped at this driver radius (and the driven
   // radius that keeps the pitch line's length), the movable sheaves opened to
   // seat it there (docs/mbd.md#start-up); 0: on the pitch radii.
@@ -122,6 +119,9 @@ struct MbdParams {
   // rig's position-controlled primary), the driven one clamped; the force that
   // holds it is the driver clamping that holds the ratio (docs/mbd.md#start-up).
   bool start_ratio_lock = false;
+  // --- numerics: the error-weight scale of the links' rotation rates
+  // (docs/mbd.md#tolerances).
+  double tolerance_link_rate_rad_s = 10.0;
 
   double link_inertia() const {
     return link_inertia_kgm2 > 0 ? link_inertia_kgm2 : link_mass_kg * link_length_m * link_length_m / 12.0;
