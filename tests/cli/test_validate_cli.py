@@ -268,6 +268,29 @@ class CalibratedSet(unittest.TestCase):
             self.assertLess(ta["plant_ss"], tb["plant_ss"])
 
 
+class DefaultOutputDir(unittest.TestCase):
+    """Without --out-dir both commands write under build/validation of the
+    working directory (its parents created), never into a folder named like
+    a module of the source tree."""
+
+    def test_default_is_under_build(self):
+        with tempfile.TemporaryDirectory() as d:
+            r = subprocess.run([os.path.abspath(CLI) if os.sep in CLI else CLI, "validate", "--scene", "gross-slip",
+                                "--t-end", "0.05", "--json", "--no-figures"],
+                               capture_output=True, text=True, timeout=600, cwd=d)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            j = json.loads(r.stdout)
+            self.assertEqual(j["out_dir"], "build/validation")
+            self.assertTrue(os.path.isfile(os.path.join(d, "build", "validation", "gross-slip.csv")))
+            self.assertTrue(os.path.isdir(os.path.join(d, "build", "validation", "reference-cache")))
+            self.assertFalse(os.path.exists(os.path.join(d, "validation")))
+            r = subprocess.run([os.path.abspath(CLI) if os.sep in CLI else CLI, "calibrate", "--scene", "gross-slip",
+                                "--t-end", "0.05", "--fit", "normal_load_factor", "--max-evals", "3", "--json"],
+                               capture_output=True, text=True, timeout=600, cwd=d)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.assertEqual(sorted(os.listdir(d)), ["build"])
+
+
 class BadInput(unittest.TestCase):
     def check(self, args, needle):
         r = run(*args)
