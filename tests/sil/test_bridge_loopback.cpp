@@ -1007,6 +1007,11 @@ TEST_CASE("published parameters: in every Reset and None answer and once per sec
   // The example controller's calibration map holds the exact geometry's
   // wrap-angle ratio (hil/controller/include/cvtctl/ratio_law.hpp); the
   // plant's cubic agrees with it to 1.1e-3 at the stops.
+  MESSAGE("ratio-control publishes: capacity_coeff ", g.params.capacity_coeff, ", r1 ", g.params.radius_driver_m,
+          " m, clamp max ", g.params.clamp_max_N, " N; ratios ", g.ratio_map.ratio_overdrive_stop, ", ",
+          g.ratio_map.ratio_setup, ", ", g.ratio_map.ratio_underdrive_stop, "; thrust ratios ",
+          g.thrust_map.thrust_ratio_overdrive_stop, ", ", g.thrust_map.thrust_ratio_setup, ", ",
+          g.thrust_map.thrust_ratio_underdrive_stop);
   const cvtctl::ThrustMap map;
   CHECK(std::fabs(g.ratio_map.ratio_overdrive_stop - map.ratio[0]) <= 3e-4);
   CHECK(std::fabs(g.ratio_map.ratio_underdrive_stop - map.ratio[4]) <= 3e-4);

@@ -44,6 +44,7 @@ void ExternalController::reset_run() {
   silent_ = late_ = e2e_ = range_ = Misbehaviour{};
   frames_checked_[0] = frames_checked_[1] = 0;
   lost_by_counter_ = 0;
+  full_timeouts_ = short_timeouts_ = 0;
   commands_ = Commands{};
   quiet_ = false;
   period_ = 0;
@@ -102,6 +103,7 @@ void ExternalController::control_period(const Scenario& sc, int k, double t) {
     if (st == CanIoStatus::Timeout && idle_) idle_();
     if (st == CanIoStatus::Ok) take(f, k, true);
   }
+  if (!answered(k)) ++(quiet_ ? short_timeouts_ : full_timeouts_);
   quiet_ = !answered(k);
 }
 

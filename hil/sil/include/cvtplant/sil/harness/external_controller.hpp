@@ -88,6 +88,10 @@ class ExternalController final : public ControllerUnderTest {
   const Misbehaviour& late() const { return late_; }
   const Misbehaviour& invalid_e2e() const { return e2e_; }
   const Misbehaviour& out_of_range() const { return range_; }
+  // Periods whose wait ended at the full answer timeout, and at the short
+  // wait for a controller that stayed silent.
+  long full_timeouts() const { return full_timeouts_; }
+  long short_timeouts() const { return short_timeouts_; }
 
  private:
   enum Kind : int { kCmd = 0, kShift = 1 };
@@ -127,6 +131,7 @@ class ExternalController final : public ControllerUnderTest {
   Misbehaviour silent_, late_, e2e_, range_;
   long frames_checked_[2] = {0, 0};
   std::uint32_t lost_by_counter_ = 0;
+  long full_timeouts_ = 0, short_timeouts_ = 0;
   Commands commands_{};
 
   // Real time: the plant's groups as this node sees them, and the command
