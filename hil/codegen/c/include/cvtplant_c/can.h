@@ -3,7 +3,7 @@
  * alive counter, data ID), the E2E checker's state machine and the timeout
  * ramp. The same rules as the C++ runtime (lib/include/cvtplant/can/), so C
  * and C++ firmware encode and decode every frame identically; ctest
- * can_c_agreement checks it. No heap, no libm, no stdio; only memcpy-free
+ * hil.c_codec_agreement checks it. No heap, no libm, no stdio; only memcpy-free
  * integer and float arithmetic (build with -ffp-contract=off). */
 #ifndef CVTPLANT_C_CAN_H
 #define CVTPLANT_C_CAN_H

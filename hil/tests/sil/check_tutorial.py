@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""ctest sil_tutorial (docs/sil.md#tests): every command block of
+"""ctest hil.sil_tutorial (docs/sil.md#tests): every command block of
 docs/tutorial.md, in page order, so that the page cannot rot.
 
   check_tutorial.py SOURCE_DIR BUILD_DIR WORK_DIR
@@ -115,18 +115,18 @@ def main():
                     "ratio_tracked", "no_gross_slip", "slip_bounded"]
             if bad or not all(k in c for k in need):
                 fails.append("%s: not every criterion passed, or one missing: %s" % (n, bad))
-            print("sil_tutorial: %s: %d criteria passed; %s" % (n, len(c), c["ratio_tracked"][1]))
+            print("hil.sil_tutorial: %s: %d criteria passed; %s" % (n, len(c), c["ratio_tracked"][1]))
         u = cases(suites(os.path.join(ctl, "sil-undersized", "junit.xml"))["sil.kick-down"])
         failed = [k for k, (v, _) in u.items() if v == "fail"]
         if failed != ["no_gross_slip"]:
             fails.append("the undersized law: failed %s, expected exactly no_gross_slip" % failed)
-        print("sil_tutorial: undersized law: FAIL no_gross_slip: %s" % u["no_gross_slip"][1])
+        print("hil.sil_tutorial: undersized law: FAIL no_gross_slip: %s" % u["no_gross_slip"][1])
         for run_dir in ("sil-realtime", "sil-can0"):
             r = cases(suites(os.path.join(ctl, run_dir, "junit.xml"))["sil.kick-down.realtime"])
             bad = [k for k, (v, _) in r.items() if v == "fail"]
             if bad or r["realtime_paced"][0] != "ok" or "controller_on_time" not in r:
                 fails.append("%s: failed %s" % (run_dir, bad))
-            print("sil_tutorial: %s: realtime_paced: %s; controller_on_time: %s %s" % (
+            print("hil.sil_tutorial: %s: realtime_paced: %s; controller_on_time: %s %s" % (
                 run_dir, r["realtime_paced"][1], r["controller_on_time"][0], r["controller_on_time"][1]))
     except (OSError, KeyError, ET.ParseError) as e:
         fails.append("a report the page promises is missing: %r" % e)
@@ -134,8 +134,8 @@ def main():
     if not os.path.isfile(html) or "kick-down" not in open(html).read():
         fails.append("no HTML report with the scenarios at %s" % html)
     for f in fails:
-        print("sil_tutorial: FAIL: %s" % f)
-    print("sil_tutorial: %s" % ("PASSED" if not fails else "FAILED"))
+        print("hil.sil_tutorial: FAIL: %s" % f)
+    print("hil.sil_tutorial: %s" % ("PASSED" if not fails else "FAILED"))
     return 1 if fails else 0
 
 

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Check the candump -L log of tests/can/vcan_peers.sh: every line parses,
+"""Check the candump -L log of hil/tests/can/vcan_peers.sh: every line parses,
 the CtrlCmd stream decodes with canmatrix to the values the controller sent
 (E2E CRC and counter checked independently), the replies and every bad frame
 of vcan_peer.py were on the bus, error frames were logged as error frames.

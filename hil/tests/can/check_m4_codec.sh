@@ -1,12 +1,12 @@
 #!/bin/sh
 # Compile the CAN codec (or another firmware translation unit built on it, such
-# as the example controller, tests/sil/m4_controller_smoke.cpp) for Cortex-M4F
+# as the example controller, hil/tests/sil/m4_controller_smoke.cpp) for Cortex-M4F
 # with the firmware flags and refuse any reference to the heap, exceptions or
 # RTTI in the object.
 # usage: check_m4_codec.sh <arm-none-eabi-g++> <source root> <out dir> [<source file>]
 set -eu
 CXX=$1; SRC=$2; OUT=$3
-UNIT=${4:-$SRC/tests/can/m4_codec_smoke.cpp}
+UNIT=${4:-$SRC/hil/tests/can/m4_codec_smoke.cpp}
 OBJ=$OUT/$(basename "$UNIT" .cpp).o
 NM=$(dirname "$(command -v "$CXX")")/arm-none-eabi-nm
 mkdir -p "$OUT"

@@ -1,5 +1,5 @@
-// Compiled for Cortex-M4F by the sil_controller_cortex_m4 test
-// (tests/can/check_m4_codec.sh): the example controller's law and CAN node
+// Compiled for Cortex-M4F by the hil.sil_controller_cortex_m4 test
+// (hil/tests/can/check_m4_codec.sh): the example controller's law and CAN node
 // on a stand-in for an MCU CAN driver, with the firmware flags. Any heap,
 // exception or RTTI reference fails the test (docs/sil.md#controller).
 #include "cvtctl/control_schedule.hpp"

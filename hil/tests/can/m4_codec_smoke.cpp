@@ -1,7 +1,7 @@
-// Compiled for Cortex-M4F by the can_codec_cortex_m4 test: instantiates the
+// Compiled for Cortex-M4F by the hil.codec_cortex_m4 test: instantiates the
 // whole codec, E2E and receive pipeline with the firmware flags, so the core's
 // no-heap / no-exceptions / no-RTTI promise is checked by the compiler and by
-// the undefined-symbol list of the object (tests/can/check_m4_codec.sh).
+// the undefined-symbol list of the object (hil/tests/can/check_m4_codec.sh).
 #include "cvtplant/can/messages.hpp"
 
 namespace {

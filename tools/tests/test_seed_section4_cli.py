@@ -24,7 +24,7 @@ properties of what it reports, not just that it ran:
   - every PNG listed exists and is a valid PNG (signature, chunk CRCs, IHDR,
     IDAT inflates to exactly height * (1 + width * bytes per pixel));
   - summary.json in the output directory equals the printed JSON.
-Usage: seed_section4_check.py CVTPLANT TMPDIR
+Usage: test_seed_section4_cli.py CVTPLANT TMPDIR
 """
 import json
 import os

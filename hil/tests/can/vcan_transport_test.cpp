@@ -1,7 +1,7 @@
 // SocketCAN transport against real peers on a (virtual) CAN bus; run through
-// hil/vcan-run by tests/can/vcan_peers.sh (docs/can.md#vcan-tests).
+// hil/vcan-run by hil/tests/can/vcan_peers.sh (docs/can.md#vcan-tests).
 //
-//   vcan_transport_test peer IF N     controller role against tests/can/vcan_peer.py:
+//   vcan_transport_test peer IF N     controller role against hil/tests/can/vcan_peer.py:
 //                                     N CtrlCmd -> PlantSpeeds exchanges, then the
 //                                     peer's bad frames must be rejected in order
 //   vcan_transport_test echo IF N     answer N frames 0x201 with 0x202 (C++ peer)

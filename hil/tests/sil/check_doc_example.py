@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Checks the candump example of docs/sil.md#log against implementations that
 are not the project's codec: the E2E CRC is recomputed with the tests'
-Profile 1 closed form (tests/can/e2e_profile1.py), the payload is decoded
+Profile 1 closed form (hil/tests/can/e2e_profile1.py), the payload is decoded
 with python3-canmatrix from the DBC, and the decoded sim_time_us must equal
 the timestamp (the example is logged with --log-clock sim).
 

@@ -7,8 +7,8 @@
 //    these names are lexed before the poison and are harmless.
 // 2. Link level: the double names (sin, cos, exp, atan, tanh) cannot be
 //    poisoned because cvt::dm defines functions with those names. For them,
-//    ctest `detmath_no_libm` runs nm on this object file and fails on any
-//    undefined reference to a libm function (tests/unit/check_no_libm.cmake).
+//    ctest `lib.detmath_no_libm` runs nm on this object file and fails on any
+//    undefined reference to a libm function (lib/tests/check_no_libm.cmake).
 //    This TU instantiates every dm function for every scalar type, so the
 //    object contains every call the header can make.
 #include <doctest/doctest.h>

@@ -3,7 +3,7 @@
 // through the external-controller protocol: it passes ratio-sweep and
 // kick-down in full, and with its safety factor lowered the safety-factor
 // criterion fails. The same code, over SocketCAN and built against the
-// installed package, runs in sil_tutorial on vcan.
+// installed package, runs in hil.sil_tutorial on vcan.
 #include <doctest/doctest.h>
 
 #include <cstring>

@@ -1,4 +1,4 @@
-// Helper for tests/can/agree_canmatrix.py (the codec-vs-canmatrix agreement
+// Helper for hil/tests/can/agree_canmatrix.py (the codec-vs-canmatrix agreement
 // test). Host-only test tool.
 //
 //   can_agree_tool pack [N]   pack N pseudo-random messages of every type

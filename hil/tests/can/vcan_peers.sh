@@ -1,6 +1,6 @@
 #!/bin/bash
 # Real peers on vcan0 (docs/can.md#vcan-tests). Run through hil/vcan-run:
-#   hil/vcan-run -- tests/can/vcan_peers.sh BUILD_BIN_DIR SOURCE_DIR OUT_DIR
+#   hil/vcan-run -- hil/tests/can/vcan_peers.sh BUILD_BIN_DIR SOURCE_DIR OUT_DIR
 # candump (can-utils) logs the bus; vcan_transport_test (the project's
 # SocketCanTransport + codec) plays the controller against vcan_peer.py
 # (python3-can + python3-canmatrix); then C++<->C++ round trips, a send burst
@@ -19,7 +19,7 @@ rc=0
 candump -L "$IF,0:0,#FFFFFFFF" > "$OUT/candump.log" &
 candump_pid=$!
 
-$PY "$SRC/tests/can/vcan_peer.py" "$IF" "$DBC" "$OUT/peer.ready" > "$OUT/vcan_peer.log" 2>&1 &
+$PY "$SRC/hil/tests/can/vcan_peer.py" "$IF" "$DBC" "$OUT/peer.ready" > "$OUT/vcan_peer.log" 2>&1 &
 peer_pid=$!
 for _ in $(seq 1 600); do [ -e "$OUT/peer.ready" ] && break; sleep 0.1; done
 if [ ! -e "$OUT/peer.ready" ]; then echo "vcan_peers: python peer did not start"; cat "$OUT/vcan_peer.log"; exit 1; fi
@@ -39,6 +39,6 @@ wait "$echo_pid" || rc=1
 sleep 0.3
 kill "$candump_pid" 2>/dev/null
 wait "$candump_pid" 2>/dev/null
-$PY "$SRC/tests/can/check_candump.py" "$OUT/candump.log" "$DBC" "$N" || rc=1
+$PY "$SRC/hil/tests/can/check_candump.py" "$OUT/candump.log" "$DBC" "$N" || rc=1
 echo "vcan_peers: $([ $rc = 0 ] && echo PASSED || echo FAILED)"
 exit $rc

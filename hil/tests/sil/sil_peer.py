@@ -2,7 +2,7 @@
 """python3-can + python3-canmatrix peer driving cvtplant-bridge in lock-step
 (docs/sil.md#peer-test). Everything on the wire is encoded and decoded by
 canmatrix from the DBC; the E2E CRC by the Profile 1 closed form of
-tests/can/e2e_profile1.py, not by the project's codec.
+hil/tests/can/e2e_profile1.py, not by the project's codec.
 
 1. Reset to scene TipIn, then 50 periods of CtrlCmd (5000 N, 50 N m) + Step 10:
    each group must be Speeds, Ratio, Forces[, Diag], Status with one

@@ -2,7 +2,7 @@
 """Checks the candump example of docs/can.md#candump-example: the decoded
 lines in the docs are what hil/candump-decode (canmatrix, from the DBC)
 prints for the raw lines above them, every frame's E2E CRC agrees with the
-tests' own Profile 1 closed form (tests/can/e2e_profile1.py), and the
+tests' own Profile 1 closed form (hil/tests/can/e2e_profile1.py), and the
 decoder refuses bad input with exit 2.
 
 usage: check_candump_example.py DOCS_CAN_MD DECODER DBC

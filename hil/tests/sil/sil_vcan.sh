@@ -1,7 +1,7 @@
 #!/bin/bash
 # The SIL suite on vcan0, in one vcan-run invocation so the micro-VM boots
 # once (docs/sil.md#tests):
-#   hil/vcan-run --rw OUT_PARENT -- tests/sil/sil_vcan.sh BUILD_DIR SOURCE_DIR OUT_DIR
+#   hil/vcan-run --rw OUT_PARENT -- hil/tests/sil/sil_vcan.sh BUILD_DIR SOURCE_DIR OUT_DIR
 # 1. cvtplant-bridge (lock-step) + cvtplant-sil: the ten scenarios (three
 #    ratio control, two driving, five faults) with the example controller
 #    -> OUT/sil-junit.xml (every scenario present and passed, the ratio
@@ -31,7 +31,7 @@ SIL=$BUILD/hil/cvtplant-sil
 mkdir -p "$OUT"
 rm -f "$OUT"/*.log "$OUT"/*.json "$OUT"/*.xml "$OUT"/*.csv "$OUT"/*.png "$OUT"/*.ready
 rc=0
-fail() { echo "sil_vcan: FAIL: $*"; rc=1; }
+fail() { echo "hil.sil_vcan: FAIL: $*"; rc=1; }
 
 start_bridge() {  # name, extra args...
   local name=$1; shift
@@ -86,13 +86,13 @@ bad += [n for n in rt if "sil." + n not in suites or suites["sil." + n].get("fai
         not set(rt_always + common[1:] + ratio + ["control_on_fresh_groups"]) <= checks(n) or
         not all(judged(n, c) for c in rt_always)]
 full = [n for n in rt if "sil." + n in suites and suites["sil." + n].get("skipped") == "0"]
-print("sil_vcan: JUnit: %d scenarios, %d checks, %s; real time judged in full (plant kept time): %s" % (
+print("hil.sil_vcan: JUnit: %d scenarios, %d checks, %s; real time judged in full (plant kept time): %s" % (
     len(suites), sum(int(s.get("tests")) for s in suites.values()),
     "all passed" if not bad else "missing or failed: %s" % bad, full or "none"))
 for n in rt:
     for c in suites.get("sil." + n, ET.Element("x")).iter("testcase"):
         if c.get("name") == "realtime_paced":
-            print("sil_vcan: %s: %s" % (n, c.findtext("system-out")))
+            print("hil.sil_vcan: %s: %s" % (n, c.findtext("system-out")))
 sys.exit(1 if bad else 0)
 PYEOF
 mkdir -p "$OUT/undersized"
@@ -101,11 +101,11 @@ if "$SIL" run --iface "$IF" --scenario load-step --safety 0.8 --out "$OUT/unders
 elif ! grep -q "FAIL no_gross_slip" "$OUT/undersized/out.txt"; then
   cat "$OUT/undersized/out.txt"; fail "undersized clamp: expected exactly the gross-slip criterion to fail"
 else
-  echo "sil_vcan: undersized clamp (safety 0.8) caught: $(grep 'no_gross_slip' "$OUT/undersized/out.txt" | sed 's/^ *//')"
+  echo "hil.sil_vcan: undersized clamp (safety 0.8) caught: $(grep 'no_gross_slip' "$OUT/undersized/out.txt" | sed 's/^ *//')"
 fi
-$PY "$SRC/tests/sil/sil_peer.py" "$IF" "$DBC" || fail "python peer"
+$PY "$SRC/hil/tests/sil/sil_peer.py" "$IF" "$DBC" || fail "python peer"
 t2=$(date +%s.%N)
-echo "sil_vcan: scenarios $(awk "BEGIN{print $t1 - $t0}") s, negative control + python peer $(awk "BEGIN{print $t2 - $t1}") s"
+echo "hil.sil_vcan: scenarios $(awk "BEGIN{print $t1 - $t0}") s, negative control + python peer $(awk "BEGIN{print $t2 - $t1}") s"
 stop_bridge
 # A closing marker: once candump logged it, it has logged every frame before.
 for _ in $(seq 1 100); do
@@ -136,17 +136,17 @@ PYEOF
 # the kernel's drop count (SO_RXQ_OVFL), equal to its JSON summary, and the
 # next PlantStatus fault_frames_dropped.
 start_bridge bridge-ovf
-$PY "$SRC/tests/sil/sil_bus_diag.py" "$IF" "$DBC" > "$OUT/ovf-before.json" || fail "bus diagnostics before the flood"
+$PY "$SRC/hil/tests/sil/sil_bus_diag.py" "$IF" "$DBC" > "$OUT/ovf-before.json" || fail "bus diagnostics before the flood"
 kill -STOP "$bridge_pid"
 cangen "$IF" -g 0 -n ${CVT_SIL_FLOOD:-4000} -I 555 -L 8 -D 0011223344556677 || fail "cangen flood"
 kill -CONT "$bridge_pid"
-$PY "$SRC/tests/sil/sil_bus_diag.py" "$IF" "$DBC" > "$OUT/ovf-after.json" || fail "bus diagnostics after the flood"
+$PY "$SRC/hil/tests/sil/sil_bus_diag.py" "$IF" "$DBC" > "$OUT/ovf-after.json" || fail "bus diagnostics after the flood"
 stop_bridge
 $PY - "$OUT/ovf-before.json" "$OUT/ovf-after.json" "$OUT/bridge-ovf.json" <<'PYEOF' || fail "overflow not reported on the bus"
 import json, sys
 before, after = (json.loads(open(p).read()) for p in sys.argv[1:3])
 s = json.load(open(sys.argv[3]))
-print("sil_vcan: receive-queue overflow: PlantBusDiag.rx_kernel_drops %d -> %d, JSON %d; fault_frames_dropped %s; "
+print("hil.sil_vcan: receive-queue overflow: PlantBusDiag.rx_kernel_drops %d -> %d, JSON %d; fault_frames_dropped %s; "
       "rejected_frames %d -> %d" % (before["rx_kernel_drops"], after["rx_kernel_drops"], s["bus"]["rx_kernel_drops"],
                                     after["fault_frames_dropped"], before["rejected_frames"], after["rejected_frames"]))
 ok = (before["rx_kernel_drops"] == 0 and after["rx_kernel_drops"] > 0 and
@@ -164,12 +164,12 @@ for run in 1 2; do
   stop_bridge
 done
 if [ -s "$OUT/det1.log" ] && cmp -s "$OUT/det1.log" "$OUT/det2.log"; then
-  echo "sil_vcan: determinism: two runs, $(wc -l < "$OUT/det1.log") frames, byte-identical (sha256 $(sha256sum < "$OUT/det1.log" | cut -c1-16))"
+  echo "hil.sil_vcan: determinism: two runs, $(wc -l < "$OUT/det1.log") frames, byte-identical (sha256 $(sha256sum < "$OUT/det1.log" | cut -c1-16))"
 else
   fail "determinism: the two lock-step traces differ"
 fi
 
-echo "sil_vcan: summary and overflow checks $(awk "BEGIN{print $t3 - $t2}") s, determinism $(awk "BEGIN{print $(date +%s.%N) - $t3}") s"
+echo "hil.sil_vcan: summary and overflow checks $(awk "BEGIN{print $t3 - $t2}") s, determinism $(awk "BEGIN{print $(date +%s.%N) - $t3}") s"
 # ---- 3. real time, 4. round trips (figures, docs/sil.md#figures) -----------
 # Real time with the example controller beside it, following the plant's
 # groups (docs/sil.md#controller-schedule). The controller runs 2 s and the
@@ -185,14 +185,14 @@ s = json.load(open(sys.argv[1]))
 c = json.load(open(sys.argv[2]))
 rt = s["realtime"]
 if rt is None:
-    print("sil_vcan: the bridge never ran in real time (stopped before its pacing loop)")
+    print("hil.sil_vcan: the bridge never ran in real time (stopped before its pacing loop)")
     sys.exit(1)
 j = rt["jitter_ns"]
-print("sil_vcan: real time 1 kHz with the controller: %d periods, %d overruns, SCHED_FIFO %s, lateness p50 %.1f us "
+print("hil.sil_vcan: real time 1 kHz with the controller: %d periods, %d overruns, SCHED_FIFO %s, lateness p50 %.1f us "
       "p99 %.1f us p99.9 %.1f us max %.1f us; bridge accepted %d frames, %d cmd timeouts; controller %s"
       % (rt["periods"], rt["overruns"], rt["sched_fifo"], j["p50"] / 1e3, j["p99"] / 1e3, j["p99_9"] / 1e3,
          j["max"] / 1e3, s["rx"]["accepted"], s["cmd_timeouts"], c))
-print("sil_vcan: controller steps with fresh plant data: %d of %d (%.3f), longest gap between steps %.1f ms"
+print("hil.sil_vcan: controller steps with fresh plant data: %d of %d (%.3f), longest gap between steps %.1f ms"
       % (c["fresh_periods"], c["periods"], c["fresh_fraction"], c["max_step_gap_ms"]))
 # What holds however starved the VM is: the bridge paced frames in real
 # time, the two nodes talked, the plant ran without a fault, and nothing was
@@ -212,7 +212,7 @@ ok = (rt["periods"] >= 1 and j["max"] >= j["p99_9"] >= j["p99"] >= j["p50"] >= 0
       s["plant_fault"] == "none" and c["accepted"] >= 1 and c["rejected"] == 0)
 if on_time:
     ok = ok and rt["periods"] >= 2000 and s["rx"]["accepted"] >= 50 and c["fresh_fraction"] >= 0.8
-print("sil_vcan: %d of %d frames overran: %s; bridge rejected %d (%d counter jumps after %d command timeouts)" % (
+print("hil.sil_vcan: %d of %d frames overran: %s; bridge rejected %d (%d counter jumps after %d command timeouts)" % (
     rt["overruns"], rt["periods"], "the plant kept time, frames, commands and fresh-data floor 0.8 checked" if on_time
     else "the VM did not keep time, only the functional checks apply", s["rx"]["rejected"],
     s["rx"]["wrong_sequence"], s["cmd_timeouts"]))
@@ -242,10 +242,10 @@ c = json.load(open(sys.argv[2]))
 r = c["ratio"]
 rt = s["realtime"]
 if rt is None:
-    print("sil_vcan: real-time ratio control: the bridge never ran in real time")
+    print("hil.sil_vcan: real-time ratio control: the bridge never ran in real time")
     sys.exit(1)
 on_time = rt["overruns"] <= 0.01 * rt["periods"] and c["fresh_fraction"] >= 0.95
-print("sil_vcan: real-time ratio control: %d periods (%d overruns), controller on fresh data %.3f, plant fault %s, "
+print("hil.sil_vcan: real-time ratio control: %d periods (%d overruns), controller on fresh data %.3f, plant fault %s, "
       "%d settled samples, max |ratio - set-point| %.4f, max |slip| %.4f, %d stop-refined frames, %d shift timeouts; %s"
       % (rt["periods"], rt["overruns"], c["fresh_fraction"], s["plant_fault"], r["settled_samples"],
          r["max_abs_error_settled"], r["max_abs_slip"], s["stop_refined_frames"], s["shift_timeouts"],
@@ -270,7 +270,7 @@ for pin in 0 any; do
 done
 
 # ---- 5. plot ----------------------------------------------------------------
-gnuplot -e "dir='$OUT'" "$SRC/tests/sil/sil_plot.gp" && [ -s "$OUT/sil-summary.png" ] || fail "summary plot"
+gnuplot -e "dir='$OUT'" "$SRC/hil/tests/sil/sil_plot.gp" && [ -s "$OUT/sil-summary.png" ] || fail "summary plot"
 
-echo "sil_vcan: $([ $rc = 0 ] && echo PASSED || echo FAILED)"
+echo "hil.sil_vcan: $([ $rc = 0 ] && echo PASSED || echo FAILED)"
 exit $rc

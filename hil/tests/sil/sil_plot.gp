@@ -1,5 +1,5 @@
 # Summary plot of the SIL scenarios (docs/sil.md#plot):
-#   gnuplot -e "dir='OUT'" tests/sil/sil_plot.gp   ->  OUT/sil-summary.png
+#   gnuplot -e "dir='OUT'" hil/tests/sil/sil_plot.gp   ->  OUT/sil-summary.png
 # One column per scenario: slip, torque-capacity safety factor, clamping.
 if (!exists("dir")) dir = "."
 set terminal pngcairo size 1500,900 font ",9" noenhanced

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""python3-can peer for tests/can/vcan_peers.sh (docs/can.md#vcan-tests).
+"""python3-can peer for hil/tests/can/vcan_peers.sh (docs/can.md#vcan-tests).
 
 Plays the plant against vcan_transport_test's controller role: receives
 CtrlCmd, decodes it with python3-canmatrix against the DBC and checks the E2E
