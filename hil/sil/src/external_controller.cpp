@@ -84,22 +84,12 @@ void ExternalController::control_period(const Scenario& sc, int k, double t) {
   answers_.emplace_back();
   send_demand(tag_, sc.demand_Nm(t), ratio_control_ ? sc.ratio_target(t) : 0.0f, ratio_control_);
   // Wait for this period's commands; the one wall-clock wait of lock-step.
-  const std::int64_t start = wall_.now_ns();
-  std::int64_t wait = quiet_ ? opt_.silent_wait_ns : opt_.answer_timeout_ns;
-  if (k == 0 && opt_.start_timeout_ns > wait) wait = opt_.start_timeout_ns;
-  const std::int64_t end = start + wait;
-  constexpr std::int64_t kStartResend_ns = 200000000;
-  std::int64_t resend = start + kStartResend_ns;
+  const std::int64_t end = wall_.now_ns() + (quiet_ ? opt_.silent_wait_ns : opt_.answer_timeout_ns);
   while (!answered(k)) {
-    const std::int64_t now = wall_.now_ns();
-    const std::int64_t left = end - now;
+    const std::int64_t left = end - wall_.now_ns();
     if (left <= 0) break;
-    if (k == 0 && now >= resend) {
-      send_demand(tag_, sc.demand_Nm(t), ratio_control_ ? sc.ratio_target(t) : 0.0f, ratio_control_);
-      resend += kStartResend_ns;
-    }
     CanFrame f;
-    const CanIoStatus st = bus_.receive(f, idle_ ? 0 : (k == 0 && resend - now < left ? resend - now : left));
+    const CanIoStatus st = bus_.receive(f, idle_ ? 0 : left);
     if (st == CanIoStatus::Timeout && idle_) idle_();
     if (st == CanIoStatus::Ok) take(f, k, true);
   }
@@ -112,6 +102,27 @@ void ExternalController::after_step() {
   CanFrame f;
   for (CanIoStatus st = bus_.receive(f, 0); st != CanIoStatus::Timeout; st = bus_.receive(f, 0))
     if (st == CanIoStatus::Ok) take(f, period_, false);
+}
+
+bool ExternalController::wait_ready() {
+  const std::int64_t end = wall_.now_ns() + opt_.start_timeout_ns;
+  constexpr std::int64_t kProbe_ns = 200000000;
+  // A tag no run's first period uses, so that a late answer is not taken for one.
+  constexpr std::uint8_t kProbeTag = 15;
+  while (wall_.now_ns() < end) {
+    send_demand(kProbeTag, 0.0f, 0.0f, false);
+    const std::int64_t next = wall_.now_ns() + kProbe_ns;
+    for (std::int64_t left = next - wall_.now_ns(); left > 0; left = next - wall_.now_ns()) {
+      CanFrame f;
+      const CanIoStatus st = bus_.receive(f, idle_ ? 0 : left);
+      if (st == CanIoStatus::Timeout && idle_) idle_();
+      cvt::can::CtrlCmd m;
+      if (st == CanIoStatus::Ok && f.id == cvt::can::CtrlCmd::kId && f.dlc == cvt::can::CtrlCmd::kDlc &&
+          cvt::can::unpack(f.data, m) == cvt::can::CodecStatus::Ok && m.demand_tag == kProbeTag)
+        return true;
+    }
+  }
+  return false;
 }
 
 bool ExternalController::answered(int k) const {

@@ -281,6 +281,15 @@ int main(int argc, char** argv) {
   }
   for (const std::string& n : left_out)
     std::printf("not run: %s (its faults are inside the controller: the example controller only)\n", n.c_str());
+  if (external && !static_cast<ExternalController&>(*ctl).wait_ready()) {
+    const std::string why =
+        controller_cmd.empty() || controller_proc.running() ? "" : " (--controller-cmd: " + controller_proc.ended() + ")";
+    std::fprintf(stderr, "cvtplant-sil: no controller answered HarnessDemand on %s within 10 s%s\n", iface.c_str(),
+                 why.c_str());
+    if (!controller_cmd.empty()) controller_proc.stop();
+    if (!plant_cmd.empty()) plant_proc.stop();
+    return 1;
+  }
 
   // Real-time pacing: the bridge process on the wall clock, or the
   // in-process bridge one frame per virtual millisecond.

@@ -12,7 +12,8 @@ docs/tutorial.md, in page order, so that the page cannot rot.
 - Blocks that use cvtplant-vcan-run or a real interface (can0) run in ONE
   micro-VM (hil/vcan-run, booted once): inside it vcan0 exists, so the page's
   own cvtplant-vcan-run calls run their command at once, and can0 becomes
-  vcan0 with the template standing in for the board. Host blocks before the
+  vcan0 (`--iface can0` becomes `--iface vcan0`) with the template standing
+  in for the board. Host blocks before the
   first of them run before the VM, the ones after it afterwards (they only
   read what the VM runs wrote).
 - Then the outcomes the page promises are checked: the two scenarios pass
@@ -38,7 +39,7 @@ def blocks(page):
 
 
 def needs_vcan(b):
-    return "cvtplant-vcan-run" in b or re.search(r"\bcan0\b", b) is not None
+    return "cvtplant-vcan-run" in b or "--iface can0" in b
 
 
 def suites(junit):
@@ -76,10 +77,10 @@ def main():
     vm = []
     for i in vm_at:
         b = bs[i]
-        if re.search(r"\bcan0\b", b):
+        if "--iface can0" in b:
             # The board of step 7: the template on vcan0, in real time.
             b = ('"$HOME/my-controller/build/cvt-controller" --iface vcan0 --mode realtime '
-                 '> "$HOME/board.log" 2>&1 &\nboard=$!\n' + re.sub(r"\bcan0\b", "vcan0", b) +
+                 '> "$HOME/board.log" 2>&1 &\nboard=$!\n' + re.sub(r"--iface can0\b", "--iface vcan0", b) +
                  'rc=$?\nkill $board; wait $board\n(exit $rc)\n')
         vm.append(b)
 
@@ -107,22 +108,23 @@ def main():
     # What the page says happens.
     ctl = os.path.join(home, "my-controller")
     try:
-        s = suites(os.path.join(ctl, "sil-out", "junit.xml"))
+        s = suites(os.path.join(ctl, "sil-out", "sil-junit.xml"))
         for n in ("sil.ratio-sweep", "sil.kick-down"):
             c = cases(s[n])
-            bad = [k for k, (v, _) in c.items() if v != "ok"]
+            # Cut at 4.5 s: the end stops (12-17.5 s) are not judged.
+            bad = [k for k, (v, _) in c.items() if v != "ok" and not (v == "skip" and k == "end_stops_reached")]
             need = ["controller_answered", "commands_on_time", "commands_e2e_valid", "commands_in_range",
                     "ratio_tracked", "no_gross_slip", "slip_bounded"]
             if bad or not all(k in c for k in need):
                 fails.append("%s: not every criterion passed, or one missing: %s" % (n, bad))
             print("hil.sil_tutorial: %s: %d criteria passed; %s" % (n, len(c), c["ratio_tracked"][1]))
-        u = cases(suites(os.path.join(ctl, "sil-undersized", "junit.xml"))["sil.kick-down"])
+        u = cases(suites(os.path.join(ctl, "sil-undersized", "sil-junit.xml"))["sil.kick-down"])
         failed = [k for k, (v, _) in u.items() if v == "fail"]
         if failed != ["no_gross_slip"]:
             fails.append("the undersized law: failed %s, expected exactly no_gross_slip" % failed)
         print("hil.sil_tutorial: undersized law: FAIL no_gross_slip: %s" % u["no_gross_slip"][1])
         for run_dir in ("sil-realtime", "sil-can0"):
-            r = cases(suites(os.path.join(ctl, run_dir, "junit.xml"))["sil.kick-down.realtime"])
+            r = cases(suites(os.path.join(ctl, run_dir, "sil-junit.xml"))["sil.kick-down.realtime"])
             bad = [k for k, (v, _) in r.items() if v == "fail"]
             if bad or r["realtime_paced"][0] != "ok" or "controller_on_time" not in r:
                 fails.append("%s: failed %s" % (run_dir, bad))

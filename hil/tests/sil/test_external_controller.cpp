@@ -72,6 +72,13 @@ TEST_CASE("external controller, lock-step: the protocol gives the example contro
   CHECK(slurp(cfg.out_dir + "/sil-kick-down.csv") == inproc);
 }
 
+TEST_CASE("external controller: the harness waits for the controller to come on the bus, and gives up on a silent one") {
+  Rig ready;
+  CHECK(ready.ext.wait_ready());
+  Rig silent(Fault::Silent, 0);
+  CHECK_FALSE(silent.ext.wait_ready());  // after start_timeout (0.2 s here)
+}
+
 TEST_CASE("external controller, lock-step: scenarios with faults inside the controller are refused with the reason") {
   std::string why;
   CHECK(ExternalController::accepts(scenario("ratio-sweep"), why));

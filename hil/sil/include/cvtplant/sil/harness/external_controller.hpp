@@ -30,9 +30,7 @@ struct ExternalOptions {
   // only this long until it answers again: a dead controller costs one
   // timeout, not one per period.
   std::int64_t silent_wait_ns = 10000000;
-  // The first period of a run waits at least this long, sending its demand
-  // again every 200 ms: a controller started with the run (--controller-cmd)
-  // may open its socket after the first demand went out.
+  // How long wait_ready() waits for a controller to come on the bus.
   std::int64_t start_timeout_ns = 10000000000;
 };
 
@@ -61,6 +59,14 @@ class ExternalController final : public ControllerUnderTest {
       : bus_(bus), opt_(o), idle_(std::move(idle)), rt_idle_(std::move(rt_idle)) {}
 
   bool can_run(const Scenario& sc, std::string& why) const override { return accepts(sc, why); }
+
+  // Before the first run: a controller started with the runs
+  // (--controller-cmd) opens its socket some time after it was started, and
+  // would miss the first Reset's answer with the plant's parameters. A
+  // HarnessDemand (no ratio control, demand 0) every 200 ms until a CtrlCmd
+  // echoes it, up to start_timeout_ns: then it is on the bus. False when it
+  // never answered.
+  bool wait_ready();
   // Scenarios whose faults are injected into the controller's own link or
   // software need the example controller.
   static bool accepts(const Scenario& sc, std::string& why);
