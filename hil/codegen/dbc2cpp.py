@@ -197,10 +197,6 @@ class Sig:
             return inv
         return None
 
-    def raw_getter(self):
-        fn = "get_signed" if self.signed else "get_unsigned"
-        return "bits::%s(w, %d, %d)" % (fn, self.start, self.len)
-
     def range_conds(self, var, lo_type, hi_type):
         """Comparisons of `var` against [raw_min, raw_max] that are not
         tautological for a variable whose type spans [lo_type, hi_type]."""
@@ -217,8 +213,9 @@ class Sig:
             return 0, (1 << bits) - 1
         return -(1 << (bits - 1)), (1 << (bits - 1)) - 1
 
-    def pack_lines(self):
-        f = "m.%s" % self.name
+    def pack_lines(self, d):
+        """Encoding of this signal into `w`, in dialect `d` (C++ or C)."""
+        f = d.field(self.name)
         out = []
         if self.kind == "float":
             scaled = f if self.offset == 0 else "(%s - %s)" % (f, flit(self.offset))
@@ -226,59 +223,105 @@ class Sig:
             quotient = ("%s * %s" % (scaled, flit(inv))) if inv is not None else (
                 "%s / %s" % (scaled, flit(self.factor)))
             out += [
-                "  if (!bits::is_finite(%s)) return CodecStatus::NotFinite;" % f,
-                "  if (!(%s >= %s && %s <= %s)) return CodecStatus::OutOfRange;" % (f, flit(self.min), f, flit(self.max)),
+                "  if (!%s(%s)) return %s;" % (d.fn("is_finite"), f, d.status("NotFinite")),
+                "  if (!(%s >= %s && %s <= %s)) return %s;" % (f, flit(self.min), f, flit(self.max),
+                                                               d.status("OutOfRange")),
                 "  {",
-                "    int32_t raw = bits::round_to_i32(%s);" % quotient,
+                "    int32_t raw = %s(%s);" % (d.fn("round_to_i32"), quotient),
                 "    // Only a value within half an LSB of a range end can round outside",
                 "    // the raw interval; the nearest in-range code is the right answer.",
                 "    if (raw < %s) raw = %s;" % (cint(self.raw_min), cint(self.raw_min)),
                 "    if (raw > %s) raw = %s;" % (cint(self.raw_max), cint(self.raw_max)),
-                "    w = bits::put(w, %d, %d, static_cast<uint64_t>(static_cast<int64_t>(raw)));" % (self.start, self.len),
+                "    w = %s(w, %d, %d, %s);" % (d.fn("put"), self.start, self.len,
+                                              d.cast("uint64_t", d.cast("int64_t", "raw"))),
                 "  }",
             ]
         elif self.kind == "int":
             lo, hi = self.ctype_limits()
             conds = self.range_conds(f, lo, hi)
             if conds:
-                out.append("  if (%s) return CodecStatus::OutOfRange;" % " || ".join(conds))
-            out.append("  w = bits::put(w, %d, %d, static_cast<uint64_t>(static_cast<int64_t>(%s)));"
-                       % (self.start, self.len, f))
+                out.append("  if (%s) return %s;" % (" || ".join(conds), d.status("OutOfRange")))
+            out.append("  w = %s(w, %d, %d, %s);" % (d.fn("put"), self.start, self.len,
+                                                      d.cast("uint64_t", d.cast("int64_t", f))))
         elif self.kind == "enum":
             out += [
-                "  if (!is_valid(%s)) return CodecStatus::InvalidEnum;" % f,
-                "  w = bits::put(w, %d, %d, static_cast<uint64_t>(%s));" % (self.start, self.len, f),
+                "  if (!%s(%s)) return %s;" % (d.enum_valid(self.enum_name), f, d.status("InvalidEnum")),
+                "  w = %s(w, %d, %d, %s);" % (d.fn("put"), self.start, self.len, d.cast("uint64_t", f)),
             ]
         else:  # bool
-            out.append("  w = bits::put(w, %d, 1, %s ? 1u : 0u);" % (self.start, f))
+            out.append("  w = %s(w, %d, 1, %s ? 1u : 0u);" % (d.fn("put"), self.start, f))
         return out
 
-    def unpack_lines(self):
+    def unpack_lines(self, d):
+        """Decoding of this signal from `w` into the local `m`, in dialect `d`."""
         t = "m.%s" % self.name
-        g = self.raw_getter()
-        out = ["  {", "    const int64_t raw = static_cast<int64_t>(%s);" % g]
+        g = "%s(w, %d, %d)" % (d.fn("get_signed" if self.signed else "get_unsigned"), self.start, self.len)
         if self.kind == "bool":
-            out = ["  %s = %s != 0;" % (t, g)]
-            return out
+            return ["  %s = %s != 0;" % (t, g)]
+        out = ["  {", "    const int64_t raw = %s;" % d.cast("int64_t", g)]
         conds = self.range_conds("raw", self.bit_lo, self.bit_hi)
         if self.kind == "enum":
-            out.append("    const %s v = static_cast<%s>(raw);" % (self.enum_name, self.enum_name))
-            out.append("    if (!is_valid(v)) return CodecStatus::InvalidEnum;")
+            et = d.enum_type(self.enum_name)
+            out.append("    const %s v = %s;" % (et, d.cast(et, "raw")))
+            out.append("    if (!%s(v)) return %s;" % (d.enum_valid(self.enum_name), d.status("InvalidEnum")))
             out.append("    %s = v;" % t)
         else:
             if conds:
-                out.append("    if (%s) return CodecStatus::OutOfRange;" % " || ".join(conds))
+                out.append("    if (%s) return %s;" % (" || ".join(conds), d.status("OutOfRange")))
             if self.kind == "int":
-                out.append("    %s = static_cast<%s>(raw);" % (t, self.ctype))
+                out.append("    %s = %s;" % (t, d.cast(self.ctype, "raw")))
             else:
                 inv = self.exact_inverse()
-                expr = ("static_cast<float>(static_cast<int32_t>(raw)) / %s" % flit(inv)) if inv is not None else (
-                    "static_cast<float>(static_cast<int32_t>(raw)) * %s" % flit(self.factor))
+                as_float = d.cast("float", d.cast("int32_t", "raw"))
+                expr = ("%s / %s" % (as_float, flit(inv))) if inv is not None else (
+                    "%s * %s" % (as_float, flit(self.factor)))
                 if self.offset != 0:
                     expr += " + %s" % flit(self.offset)
                 out.append("    %s = %s;" % (t, expr))
         out.append("  }")
         return out
+
+
+# The two languages the codec is written in: the same statements, their
+# spellings. pack_lines/unpack_lines write one rule for both.
+class CppDialect:
+    def field(self, name):
+        return "m.%s" % name
+
+    def fn(self, name):
+        return "bits::" + name
+
+    def status(self, name):
+        return "CodecStatus::" + name
+
+    def cast(self, t, e):
+        return "static_cast<%s>(%s)" % (t, e)
+
+    def enum_type(self, enum_name):
+        return enum_name
+
+    def enum_valid(self, enum_name):
+        return "is_valid"
+
+
+class CDialect:
+    def field(self, name):
+        return "m->%s" % name
+
+    def fn(self, name):
+        return "cvt_can_" + name
+
+    def status(self, name):
+        return "CVT_CODEC_" + c_upper(name)
+
+    def cast(self, t, e):
+        return "(%s)%s" % (t, e)
+
+    def enum_type(self, enum_name):
+        return c_enum_type(enum_name)
+
+    def enum_valid(self, enum_name):
+        return c_enum_type(enum_name) + "_is_valid"
 
 
 # C99 pieces (docs/can.md#c-codec): the same arithmetic as the C++ methods
@@ -312,67 +355,6 @@ def sig_c_value(s, raw=None, phys=None):
     if s.kind == "enum":
         return c_enum_const(s.enum_name, s.values[raw])
     return cint(raw)
-
-
-def sig_c_pack(s):
-    f = "m->%s" % s.name
-    out = []
-    if s.kind == "float":
-        scaled = f if s.offset == 0 else "(%s - %s)" % (f, flit(s.offset))
-        inv = s.exact_inverse()
-        quotient = ("%s * %s" % (scaled, flit(inv))) if inv is not None else ("%s / %s" % (scaled, flit(s.factor)))
-        out += [
-            "  if (!cvt_can_is_finite(%s)) return CVT_CODEC_NOT_FINITE;" % f,
-            "  if (!(%s >= %s && %s <= %s)) return CVT_CODEC_OUT_OF_RANGE;" % (f, flit(s.min), f, flit(s.max)),
-            "  {",
-            "    int32_t raw = cvt_can_round_to_i32(%s);" % quotient,
-            "    if (raw < %s) raw = %s;" % (cint(s.raw_min), cint(s.raw_min)),
-            "    if (raw > %s) raw = %s;" % (cint(s.raw_max), cint(s.raw_max)),
-            "    w = cvt_can_put(w, %d, %d, (uint64_t)(int64_t)raw);" % (s.start, s.len),
-            "  }",
-        ]
-    elif s.kind == "int":
-        lo, hi = s.ctype_limits()
-        conds = s.range_conds(f, lo, hi)
-        if conds:
-            out.append("  if (%s) return CVT_CODEC_OUT_OF_RANGE;" % " || ".join(conds))
-        out.append("  w = cvt_can_put(w, %d, %d, (uint64_t)(int64_t)%s);" % (s.start, s.len, f))
-    elif s.kind == "enum":
-        out += [
-            "  if (!%s_is_valid(%s)) return CVT_CODEC_INVALID_ENUM;" % (c_enum_type(s.enum_name), f),
-            "  w = cvt_can_put(w, %d, %d, (uint64_t)%s);" % (s.start, s.len, f),
-        ]
-    else:
-        out.append("  w = cvt_can_put(w, %d, 1, %s ? 1u : 0u);" % (s.start, f))
-    return out
-
-
-def sig_c_unpack(s):
-    t = "m.%s" % s.name
-    fn = "cvt_can_get_signed" if s.signed else "cvt_can_get_unsigned"
-    g = "%s(w, %d, %d)" % (fn, s.start, s.len)
-    if s.kind == "bool":
-        return ["  %s = %s != 0;" % (t, g)]
-    out = ["  {", "    const int64_t raw = (int64_t)%s;" % g]
-    conds = s.range_conds("raw", s.bit_lo, s.bit_hi)
-    if s.kind == "enum":
-        et = c_enum_type(s.enum_name)
-        out.append("    if (!%s_is_valid((%s)raw)) return CVT_CODEC_INVALID_ENUM;" % (et, et))
-        out.append("    %s = (%s)raw;" % (t, et))
-    else:
-        if conds:
-            out.append("    if (%s) return CVT_CODEC_OUT_OF_RANGE;" % " || ".join(conds))
-        if s.kind == "int":
-            out.append("    %s = (%s)raw;" % (t, s.ctype))
-        else:
-            inv = s.exact_inverse()
-            expr = ("(float)(int32_t)raw / %s" % flit(inv)) if inv is not None else (
-                "(float)(int32_t)raw * %s" % flit(s.factor))
-            if s.offset != 0:
-                expr += " + %s" % flit(s.offset)
-            out.append("    %s = %s;" % (t, expr))
-    out.append("  }")
-    return out
 
 
 class Msg:
@@ -530,7 +512,7 @@ def generate(path):
         w("inline CodecStatus pack(const %s& m, uint8_t (&payload)[8]) noexcept {" % m.name)
         w("  uint64_t w = 0;")
         for s in m.signals:
-            L.extend(s.pack_lines())
+            L.extend(s.pack_lines(CppDialect()))
         w("  bits::store_le64(w, payload);")
         w("  return CodecStatus::Ok;")
         w("}")
@@ -540,7 +522,7 @@ def generate(path):
         w("  const uint64_t w = bits::load_le64(payload);")
         w("  %s m;" % m.name)
         for s in m.signals:
-            L.extend(s.unpack_lines())
+            L.extend(s.unpack_lines(CppDialect()))
         w("  out = m;")
         w("  return CodecStatus::Ok;")
         w("}")
@@ -789,7 +771,7 @@ def generate_c(path):
         c("cvt_codec_status %s_pack(const %s* m, uint8_t payload[8]) {" % (t, t))
         c("  uint64_t w = 0;")
         for sg in m.signals:
-            C.extend(sig_c_pack(sg))
+            C.extend(sg.pack_lines(CDialect()))
         c("  cvt_can_store_le64(w, payload);")
         c("  return CVT_CODEC_OK;")
         c("}")
@@ -798,7 +780,7 @@ def generate_c(path):
         c("  const uint64_t w = cvt_can_load_le64(payload);")
         c("  %s m;" % t)
         for sg in m.signals:
-            C.extend(sig_c_unpack(sg))
+            C.extend(sg.unpack_lines(CDialect()))
         c("  *out = m;")
         c("  return CVT_CODEC_OK;")
         c("}")

@@ -96,8 +96,9 @@ def main():
     if ok:
         # One VM for every vcan block; each block in a subshell, stopping at
         # the first that fails.
-        script = "set -e\n" + "".join("(\n%s)\necho 'tutorial: vcan block %d done'\n" % (b, k + 1)
-                                      for k, b in enumerate(vm))
+        script = "set -e\n" + "".join(
+            "t0=$(date +%%s.%%N)\n(\n%s)\necho \"hil.sil_tutorial: vcan block %d done in $(awk \"BEGIN{printf \\\"%%.1f\\\", $(date +%%s.%%N) - $t0}\") s\"\n"
+            % (b, k + 1) for k, b in enumerate(vm))
         path = os.path.join(home, "vcan-blocks.sh")
         open(path, "w").write(script)
         ok = run('"%s/hil/vcan-run" --rw "%s" -- bash "%s"' % (src, home, path), "the vcan blocks")

@@ -135,13 +135,15 @@ cvt_codec_status cvt_sim_ctrl_unpack(const uint8_t payload[8], cvt_sim_ctrl* out
   cvt_sim_ctrl m;
   {
     const int64_t raw = (int64_t)cvt_can_get_unsigned(w, 12, 4);
-    if (!cvt_sim_request_is_valid((cvt_sim_request)raw)) return CVT_CODEC_INVALID_ENUM;
-    m.sim_request = (cvt_sim_request)raw;
+    const cvt_sim_request v = (cvt_sim_request)raw;
+    if (!cvt_sim_request_is_valid(v)) return CVT_CODEC_INVALID_ENUM;
+    m.sim_request = v;
   }
   {
     const int64_t raw = (int64_t)cvt_can_get_unsigned(w, 16, 8);
-    if (!cvt_scene_id_is_valid((cvt_scene_id)raw)) return CVT_CODEC_INVALID_ENUM;
-    m.scene_id = (cvt_scene_id)raw;
+    const cvt_scene_id v = (cvt_scene_id)raw;
+    if (!cvt_scene_id_is_valid(v)) return CVT_CODEC_INVALID_ENUM;
+    m.scene_id = v;
   }
   {
     const int64_t raw = (int64_t)cvt_can_get_unsigned(w, 24, 16);
@@ -212,6 +214,8 @@ cvt_codec_status cvt_ctrl_cmd_pack(const cvt_ctrl_cmd* m, uint8_t payload[8]) {
   if (!(m->clamp_force_cmd_N >= 0.0f && m->clamp_force_cmd_N <= 60000.0f)) return CVT_CODEC_OUT_OF_RANGE;
   {
     int32_t raw = cvt_can_round_to_i32(m->clamp_force_cmd_N * 1.0f);
+    // Only a value within half an LSB of a range end can round outside
+    // the raw interval; the nearest in-range code is the right answer.
     if (raw < 0) raw = 0;
     if (raw > 60000) raw = 60000;
     w = cvt_can_put(w, 16, 16, (uint64_t)(int64_t)raw);
@@ -220,6 +224,8 @@ cvt_codec_status cvt_ctrl_cmd_pack(const cvt_ctrl_cmd* m, uint8_t payload[8]) {
   if (!(m->driver_torque_req_Nm >= -600.0f && m->driver_torque_req_Nm <= 600.0f)) return CVT_CODEC_OUT_OF_RANGE;
   {
     int32_t raw = cvt_can_round_to_i32(m->driver_torque_req_Nm * 50.0f);
+    // Only a value within half an LSB of a range end can round outside
+    // the raw interval; the nearest in-range code is the right answer.
     if (raw < (-30000)) raw = (-30000);
     if (raw > 30000) raw = 30000;
     w = cvt_can_put(w, 32, 16, (uint64_t)(int64_t)raw);
@@ -306,6 +312,8 @@ cvt_codec_status cvt_ctrl_shift_cmd_pack(const cvt_ctrl_shift_cmd* m, uint8_t pa
   if (!(m->driven_clamp_force_cmd_N >= 0.0f && m->driven_clamp_force_cmd_N <= 60000.0f)) return CVT_CODEC_OUT_OF_RANGE;
   {
     int32_t raw = cvt_can_round_to_i32(m->driven_clamp_force_cmd_N * 1.0f);
+    // Only a value within half an LSB of a range end can round outside
+    // the raw interval; the nearest in-range code is the right answer.
     if (raw < 0) raw = 0;
     if (raw > 60000) raw = 60000;
     w = cvt_can_put(w, 16, 16, (uint64_t)(int64_t)raw);
@@ -314,6 +322,8 @@ cvt_codec_status cvt_ctrl_shift_cmd_pack(const cvt_ctrl_shift_cmd* m, uint8_t pa
   if (!(m->ratio_target >= 0.0f && m->ratio_target <= 6.5f)) return CVT_CODEC_OUT_OF_RANGE;
   {
     int32_t raw = cvt_can_round_to_i32(m->ratio_target * 10000.0f);
+    // Only a value within half an LSB of a range end can round outside
+    // the raw interval; the nearest in-range code is the right answer.
     if (raw < 0) raw = 0;
     if (raw > 65000) raw = 65000;
     w = cvt_can_put(w, 32, 16, (uint64_t)(int64_t)raw);
@@ -398,6 +408,8 @@ cvt_codec_status cvt_harness_load_pack(const cvt_harness_load* m, uint8_t payloa
   if (!(m->load_torque_override_Nm >= -600.0f && m->load_torque_override_Nm <= 600.0f)) return CVT_CODEC_OUT_OF_RANGE;
   {
     int32_t raw = cvt_can_round_to_i32(m->load_torque_override_Nm * 50.0f);
+    // Only a value within half an LSB of a range end can round outside
+    // the raw interval; the nearest in-range code is the right answer.
     if (raw < (-30000)) raw = (-30000);
     if (raw > 30000) raw = 30000;
     w = cvt_can_put(w, 16, 16, (uint64_t)(int64_t)raw);
@@ -406,6 +418,8 @@ cvt_codec_status cvt_harness_load_pack(const cvt_harness_load* m, uint8_t payloa
   if (!(m->clamp_supply_factor >= 0.0f && m->clamp_supply_factor <= 1.0f)) return CVT_CODEC_OUT_OF_RANGE;
   {
     int32_t raw = cvt_can_round_to_i32(m->clamp_supply_factor * 10000.0f);
+    // Only a value within half an LSB of a range end can round outside
+    // the raw interval; the nearest in-range code is the right answer.
     if (raw < 0) raw = 0;
     if (raw > 10000) raw = 10000;
     w = cvt_can_put(w, 32, 16, (uint64_t)(int64_t)raw);
@@ -492,6 +506,8 @@ cvt_codec_status cvt_harness_demand_pack(const cvt_harness_demand* m, uint8_t pa
   if (!(m->driver_demand_Nm >= -600.0f && m->driver_demand_Nm <= 600.0f)) return CVT_CODEC_OUT_OF_RANGE;
   {
     int32_t raw = cvt_can_round_to_i32(m->driver_demand_Nm * 50.0f);
+    // Only a value within half an LSB of a range end can round outside
+    // the raw interval; the nearest in-range code is the right answer.
     if (raw < (-30000)) raw = (-30000);
     if (raw > 30000) raw = 30000;
     w = cvt_can_put(w, 16, 16, (uint64_t)(int64_t)raw);
@@ -500,6 +516,8 @@ cvt_codec_status cvt_harness_demand_pack(const cvt_harness_demand* m, uint8_t pa
   if (!(m->ratio_target >= 0.0f && m->ratio_target <= 6.5f)) return CVT_CODEC_OUT_OF_RANGE;
   {
     int32_t raw = cvt_can_round_to_i32(m->ratio_target * 10000.0f);
+    // Only a value within half an LSB of a range end can round outside
+    // the raw interval; the nearest in-range code is the right answer.
     if (raw < 0) raw = 0;
     if (raw > 65000) raw = 65000;
     w = cvt_can_put(w, 32, 16, (uint64_t)(int64_t)raw);
@@ -589,6 +607,8 @@ cvt_codec_status cvt_plant_speeds_pack(const cvt_plant_speeds* m, uint8_t payloa
   if (!(m->omega_driver_rad_s >= -650.0f && m->omega_driver_rad_s <= 650.0f)) return CVT_CODEC_OUT_OF_RANGE;
   {
     int32_t raw = cvt_can_round_to_i32(m->omega_driver_rad_s * 50.0f);
+    // Only a value within half an LSB of a range end can round outside
+    // the raw interval; the nearest in-range code is the right answer.
     if (raw < (-32500)) raw = (-32500);
     if (raw > 32500) raw = 32500;
     w = cvt_can_put(w, 16, 16, (uint64_t)(int64_t)raw);
@@ -597,6 +617,8 @@ cvt_codec_status cvt_plant_speeds_pack(const cvt_plant_speeds* m, uint8_t payloa
   if (!(m->omega_driven_rad_s >= -650.0f && m->omega_driven_rad_s <= 650.0f)) return CVT_CODEC_OUT_OF_RANGE;
   {
     int32_t raw = cvt_can_round_to_i32(m->omega_driven_rad_s * 50.0f);
+    // Only a value within half an LSB of a range end can round outside
+    // the raw interval; the nearest in-range code is the right answer.
     if (raw < (-32500)) raw = (-32500);
     if (raw > 32500) raw = 32500;
     w = cvt_can_put(w, 32, 16, (uint64_t)(int64_t)raw);
@@ -605,6 +627,8 @@ cvt_codec_status cvt_plant_speeds_pack(const cvt_plant_speeds* m, uint8_t payloa
   if (!(m->torque_transmitted_Nm >= -600.0f && m->torque_transmitted_Nm <= 600.0f)) return CVT_CODEC_OUT_OF_RANGE;
   {
     int32_t raw = cvt_can_round_to_i32(m->torque_transmitted_Nm * 50.0f);
+    // Only a value within half an LSB of a range end can round outside
+    // the raw interval; the nearest in-range code is the right answer.
     if (raw < (-30000)) raw = (-30000);
     if (raw > 30000) raw = 30000;
     w = cvt_can_put(w, 48, 16, (uint64_t)(int64_t)raw);
@@ -697,6 +721,8 @@ cvt_codec_status cvt_plant_ratio_pack(const cvt_plant_ratio* m, uint8_t payload[
   if (!(m->speed_ratio >= 0.0f && m->speed_ratio <= 6.5f)) return CVT_CODEC_OUT_OF_RANGE;
   {
     int32_t raw = cvt_can_round_to_i32(m->speed_ratio * 10000.0f);
+    // Only a value within half an LSB of a range end can round outside
+    // the raw interval; the nearest in-range code is the right answer.
     if (raw < 0) raw = 0;
     if (raw > 65000) raw = 65000;
     w = cvt_can_put(w, 16, 16, (uint64_t)(int64_t)raw);
@@ -705,6 +731,8 @@ cvt_codec_status cvt_plant_ratio_pack(const cvt_plant_ratio* m, uint8_t payload[
   if (!(m->geometric_ratio >= 0.0f && m->geometric_ratio <= 6.5f)) return CVT_CODEC_OUT_OF_RANGE;
   {
     int32_t raw = cvt_can_round_to_i32(m->geometric_ratio * 10000.0f);
+    // Only a value within half an LSB of a range end can round outside
+    // the raw interval; the nearest in-range code is the right answer.
     if (raw < 0) raw = 0;
     if (raw > 65000) raw = 65000;
     w = cvt_can_put(w, 32, 16, (uint64_t)(int64_t)raw);
@@ -713,6 +741,8 @@ cvt_codec_status cvt_plant_ratio_pack(const cvt_plant_ratio* m, uint8_t payload[
   if (!(m->slip >= -3.2768f && m->slip <= 3.2767f)) return CVT_CODEC_OUT_OF_RANGE;
   {
     int32_t raw = cvt_can_round_to_i32(m->slip * 10000.0f);
+    // Only a value within half an LSB of a range end can round outside
+    // the raw interval; the nearest in-range code is the right answer.
     if (raw < (-32768)) raw = (-32768);
     if (raw > 32767) raw = 32767;
     w = cvt_can_put(w, 48, 16, (uint64_t)(int64_t)raw);
@@ -803,6 +833,8 @@ cvt_codec_status cvt_plant_forces_pack(const cvt_plant_forces* m, uint8_t payloa
   if (!(m->driver_axial_force_N >= 0.0f && m->driver_axial_force_N <= 65535.0f)) return CVT_CODEC_OUT_OF_RANGE;
   {
     int32_t raw = cvt_can_round_to_i32(m->driver_axial_force_N * 1.0f);
+    // Only a value within half an LSB of a range end can round outside
+    // the raw interval; the nearest in-range code is the right answer.
     if (raw < 0) raw = 0;
     if (raw > 65535) raw = 65535;
     w = cvt_can_put(w, 16, 16, (uint64_t)(int64_t)raw);
@@ -811,6 +843,8 @@ cvt_codec_status cvt_plant_forces_pack(const cvt_plant_forces* m, uint8_t payloa
   if (!(m->driven_axial_force_N >= 0.0f && m->driven_axial_force_N <= 65535.0f)) return CVT_CODEC_OUT_OF_RANGE;
   {
     int32_t raw = cvt_can_round_to_i32(m->driven_axial_force_N * 1.0f);
+    // Only a value within half an LSB of a range end can round outside
+    // the raw interval; the nearest in-range code is the right answer.
     if (raw < 0) raw = 0;
     if (raw > 65535) raw = 65535;
     w = cvt_can_put(w, 32, 16, (uint64_t)(int64_t)raw);
@@ -897,6 +931,8 @@ cvt_codec_status cvt_plant_shift_pack(const cvt_plant_shift* m, uint8_t payload[
   if (!(m->radius_driver_m >= 0.0f && m->radius_driver_m <= 0.65535f)) return CVT_CODEC_OUT_OF_RANGE;
   {
     int32_t raw = cvt_can_round_to_i32(m->radius_driver_m * 100000.0f);
+    // Only a value within half an LSB of a range end can round outside
+    // the raw interval; the nearest in-range code is the right answer.
     if (raw < 0) raw = 0;
     if (raw > 65535) raw = 65535;
     w = cvt_can_put(w, 16, 16, (uint64_t)(int64_t)raw);
@@ -905,6 +941,8 @@ cvt_codec_status cvt_plant_shift_pack(const cvt_plant_shift* m, uint8_t payload[
   if (!(m->radius_driven_m >= 0.0f && m->radius_driven_m <= 0.65535f)) return CVT_CODEC_OUT_OF_RANGE;
   {
     int32_t raw = cvt_can_round_to_i32(m->radius_driven_m * 100000.0f);
+    // Only a value within half an LSB of a range end can round outside
+    // the raw interval; the nearest in-range code is the right answer.
     if (raw < 0) raw = 0;
     if (raw > 65535) raw = 65535;
     w = cvt_can_put(w, 32, 16, (uint64_t)(int64_t)raw);
@@ -1020,8 +1058,9 @@ cvt_codec_status cvt_plant_status_unpack(const uint8_t payload[8], cvt_plant_sta
   cvt_plant_status m;
   {
     const int64_t raw = (int64_t)cvt_can_get_unsigned(w, 12, 4);
-    if (!cvt_plant_mode_is_valid((cvt_plant_mode)raw)) return CVT_CODEC_INVALID_ENUM;
-    m.plant_mode = (cvt_plant_mode)raw;
+    const cvt_plant_mode v = (cvt_plant_mode)raw;
+    if (!cvt_plant_mode_is_valid(v)) return CVT_CODEC_INVALID_ENUM;
+    m.plant_mode = v;
   }
   {
     const int64_t raw = (int64_t)cvt_can_get_unsigned(w, 16, 32);
@@ -1190,8 +1229,9 @@ cvt_codec_status cvt_plant_bus_diag_unpack(const uint8_t payload[8], cvt_plant_b
   cvt_plant_bus_diag m;
   {
     const int64_t raw = (int64_t)cvt_can_get_unsigned(w, 12, 2);
-    if (!cvt_bus_state_is_valid((cvt_bus_state)raw)) return CVT_CODEC_INVALID_ENUM;
-    m.bus_state = (cvt_bus_state)raw;
+    const cvt_bus_state v = (cvt_bus_state)raw;
+    if (!cvt_bus_state_is_valid(v)) return CVT_CODEC_INVALID_ENUM;
+    m.bus_state = v;
   }
   {
     const int64_t raw = (int64_t)cvt_can_get_unsigned(w, 16, 16);
@@ -1343,6 +1383,8 @@ cvt_codec_status cvt_plant_params_pack(const cvt_plant_params* m, uint8_t payloa
   if (!(m->capacity_coeff >= 0.0f && m->capacity_coeff <= 1.3107f)) return CVT_CODEC_OUT_OF_RANGE;
   {
     int32_t raw = cvt_can_round_to_i32(m->capacity_coeff * 50000.0f);
+    // Only a value within half an LSB of a range end can round outside
+    // the raw interval; the nearest in-range code is the right answer.
     if (raw < 0) raw = 0;
     if (raw > 65535) raw = 65535;
     w = cvt_can_put(w, 16, 16, (uint64_t)(int64_t)raw);
@@ -1351,6 +1393,8 @@ cvt_codec_status cvt_plant_params_pack(const cvt_plant_params* m, uint8_t payloa
   if (!(m->radius_driver_m >= 0.0f && m->radius_driver_m <= 0.65535f)) return CVT_CODEC_OUT_OF_RANGE;
   {
     int32_t raw = cvt_can_round_to_i32(m->radius_driver_m * 100000.0f);
+    // Only a value within half an LSB of a range end can round outside
+    // the raw interval; the nearest in-range code is the right answer.
     if (raw < 0) raw = 0;
     if (raw > 65535) raw = 65535;
     w = cvt_can_put(w, 32, 16, (uint64_t)(int64_t)raw);
@@ -1359,6 +1403,8 @@ cvt_codec_status cvt_plant_params_pack(const cvt_plant_params* m, uint8_t payloa
   if (!(m->clamp_max_N >= 0.0f && m->clamp_max_N <= 65535.0f)) return CVT_CODEC_OUT_OF_RANGE;
   {
     int32_t raw = cvt_can_round_to_i32(m->clamp_max_N * 1.0f);
+    // Only a value within half an LSB of a range end can round outside
+    // the raw interval; the nearest in-range code is the right answer.
     if (raw < 0) raw = 0;
     if (raw > 65535) raw = 65535;
     w = cvt_can_put(w, 48, 16, (uint64_t)(int64_t)raw);
@@ -1442,6 +1488,8 @@ cvt_codec_status cvt_plant_ratio_map_pack(const cvt_plant_ratio_map* m, uint8_t 
   if (!(m->ratio_overdrive_stop >= 0.0f && m->ratio_overdrive_stop <= 6.5f)) return CVT_CODEC_OUT_OF_RANGE;
   {
     int32_t raw = cvt_can_round_to_i32(m->ratio_overdrive_stop * 10000.0f);
+    // Only a value within half an LSB of a range end can round outside
+    // the raw interval; the nearest in-range code is the right answer.
     if (raw < 0) raw = 0;
     if (raw > 65000) raw = 65000;
     w = cvt_can_put(w, 16, 16, (uint64_t)(int64_t)raw);
@@ -1450,6 +1498,8 @@ cvt_codec_status cvt_plant_ratio_map_pack(const cvt_plant_ratio_map* m, uint8_t 
   if (!(m->ratio_setup >= 0.0f && m->ratio_setup <= 6.5f)) return CVT_CODEC_OUT_OF_RANGE;
   {
     int32_t raw = cvt_can_round_to_i32(m->ratio_setup * 10000.0f);
+    // Only a value within half an LSB of a range end can round outside
+    // the raw interval; the nearest in-range code is the right answer.
     if (raw < 0) raw = 0;
     if (raw > 65000) raw = 65000;
     w = cvt_can_put(w, 32, 16, (uint64_t)(int64_t)raw);
@@ -1458,6 +1508,8 @@ cvt_codec_status cvt_plant_ratio_map_pack(const cvt_plant_ratio_map* m, uint8_t 
   if (!(m->ratio_underdrive_stop >= 0.0f && m->ratio_underdrive_stop <= 6.5f)) return CVT_CODEC_OUT_OF_RANGE;
   {
     int32_t raw = cvt_can_round_to_i32(m->ratio_underdrive_stop * 10000.0f);
+    // Only a value within half an LSB of a range end can round outside
+    // the raw interval; the nearest in-range code is the right answer.
     if (raw < 0) raw = 0;
     if (raw > 65000) raw = 65000;
     w = cvt_can_put(w, 48, 16, (uint64_t)(int64_t)raw);
@@ -1543,6 +1595,8 @@ cvt_codec_status cvt_plant_thrust_map_pack(const cvt_plant_thrust_map* m, uint8_
   if (!(m->thrust_ratio_overdrive_stop >= 0.0f && m->thrust_ratio_overdrive_stop <= 1.3107f)) return CVT_CODEC_OUT_OF_RANGE;
   {
     int32_t raw = cvt_can_round_to_i32(m->thrust_ratio_overdrive_stop * 50000.0f);
+    // Only a value within half an LSB of a range end can round outside
+    // the raw interval; the nearest in-range code is the right answer.
     if (raw < 0) raw = 0;
     if (raw > 65535) raw = 65535;
     w = cvt_can_put(w, 16, 16, (uint64_t)(int64_t)raw);
@@ -1551,6 +1605,8 @@ cvt_codec_status cvt_plant_thrust_map_pack(const cvt_plant_thrust_map* m, uint8_
   if (!(m->thrust_ratio_setup >= 0.0f && m->thrust_ratio_setup <= 1.3107f)) return CVT_CODEC_OUT_OF_RANGE;
   {
     int32_t raw = cvt_can_round_to_i32(m->thrust_ratio_setup * 50000.0f);
+    // Only a value within half an LSB of a range end can round outside
+    // the raw interval; the nearest in-range code is the right answer.
     if (raw < 0) raw = 0;
     if (raw > 65535) raw = 65535;
     w = cvt_can_put(w, 32, 16, (uint64_t)(int64_t)raw);
@@ -1559,6 +1615,8 @@ cvt_codec_status cvt_plant_thrust_map_pack(const cvt_plant_thrust_map* m, uint8_
   if (!(m->thrust_ratio_underdrive_stop >= 0.0f && m->thrust_ratio_underdrive_stop <= 1.3107f)) return CVT_CODEC_OUT_OF_RANGE;
   {
     int32_t raw = cvt_can_round_to_i32(m->thrust_ratio_underdrive_stop * 50000.0f);
+    // Only a value within half an LSB of a range end can round outside
+    // the raw interval; the nearest in-range code is the right answer.
     if (raw < 0) raw = 0;
     if (raw > 65535) raw = 65535;
     w = cvt_can_put(w, 48, 16, (uint64_t)(int64_t)raw);
