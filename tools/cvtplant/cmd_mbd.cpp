@@ -182,7 +182,13 @@ cvt::mbd::MbdParams params_for(const ModelOptions& o, int friction_case) {
   p.tau_in_Nm = parse_torque(o.tau_in, "--tau-in");
   p.tau_load_Nm = parse_torque(o.tau_load, "--tau-load");
   if (!o.road_load.empty()) p.road = parse_road_load(o.road_load);
-  if (!o.omega0.empty()) p.start = parse_omega0(o.omega0);
+  if (!o.omega0.empty()) {
+    // The set's own spin-up and hold (the production set: 0.2 s each).
+    const cvt::mbd::StartAtSpeed w = parse_omega0(o.omega0);
+    p.start.active = true;
+    p.start.omega1_rad_s = w.omega1_rad_s;
+    p.start.omega2_rad_s = w.omega2_rad_s;
+  }
   p.sheaves = SheaveMode::fixed;
   if (o.sheave_mode() == "clamped") {
     p.sheaves = SheaveMode::clamped;
