@@ -18,6 +18,7 @@ INCLUDE_DIRS = {
     "hil": ["hil/codegen/include", "hil/bridge/include", "hil/controller/include", "hil/common"],
     "analysis": ["analysis/include"],
     "mbd": ["mbd/include"],
+    "fmu": ["fmu/include"],
     "tools": ["tools/cvtplant"],
 }
 # Module -> the modules it may include (besides itself). tests/ and bench/
@@ -28,7 +29,8 @@ ALLOWED = {
     "hil": ["lib", "port"],
     "analysis": ["lib"],
     "mbd": ["lib"],
-    "tools": ["lib", "port", "hil", "analysis", "mbd"],
+    "fmu": ["lib"],
+    "tools": ["lib", "port", "hil", "analysis", "mbd", "fmu"],
 }
 SOURCE_DIRS = {
     "lib": ["lib"],
@@ -36,6 +38,7 @@ SOURCE_DIRS = {
     "hil": ["hil"],
     "analysis": ["analysis/include", "analysis/src"],
     "mbd": ["mbd/include", "mbd/src"],
+    "fmu": ["fmu/include", "fmu/src"],
     "tools": ["tools/cvtplant"],
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
