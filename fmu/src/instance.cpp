@@ -161,10 +161,7 @@ const Variable* Instance::lookup(std::uint32_t vr, VarType type, const char* typ
   return v;
 }
 
-double Instance::time_s() const {
-  const long frames = engine_ != nullptr ? engine_->frames() : 0;
-  return core_.start_s + static_cast<double>(frames) * core_.scene.frame_s;
-}
+double Instance::time_s() const { return core_.start_s + static_cast<double>(core_.frames) * core_.scene.frame_s; }
 
 const char* Instance::field_variable(const char* field) const {
   if (std::strcmp(field, "beta0_deg") == 0) return "params.beta0_rad";
@@ -194,6 +191,7 @@ Status Instance::ensure_plant() {
     return Status::error;
   }
   core_.stale = false;
+  core_.frames = 0;
   return Status::ok;
 }
 
@@ -303,9 +301,10 @@ Status Instance::do_step(double t_s, double h_s, double* last_successful_s) {
       log(Status::error, "logStatusError",
           "plant fault %s in the frame from t = %.9g s (frame %ld): %s. The plant keeps its last good state (the "
           "outputs read it and `fault` names the fault); restore an earlier FMU state or reset the instance",
-          rom_fault_name(f), time_s(), engine_->frames() + 1, rom_fault_description(f));
+          rom_fault_name(f), time_s(), core_.frames + 1, rom_fault_description(f));
       return Status::error;
     }
+    ++core_.frames;
   }
   if (last_successful_s != nullptr) *last_successful_s = time_s();
   return Status::ok;
@@ -550,7 +549,7 @@ Status Instance::free_state(void** state) {
 }
 
 // Serialised: magic, version of the layout, the token's and the build's
-// fingerprints, the core (mode, flags, times, inputs, every parameter row),
+// fingerprints, the core (mode, flags, times, frames, inputs, every parameter row),
 // then the plant's bytes.
 namespace {
 struct Writer {
@@ -591,6 +590,7 @@ std::size_t Instance::serial_size(const Saved& s) const {
   w.put(std::uint8_t{});   // flags
   w.put(double{});
   w.put(double{});
+  w.put(std::int64_t{});   // frames
   for (int i = 0; i < input_count; ++i) w.put(double{});
   for (int i = 0; i < kSceneParamCount; ++i) w.put(double{});
   w.put(std::uint64_t{});  // plant bytes
@@ -627,6 +627,7 @@ Status Instance::serialize(const void* state, unsigned char* out, std::size_t si
                                   (s->core.stale ? 4u : 0u) | (s->engine->loaded() ? 8u : 0u)));
   w.put(s->core.start_s);
   w.put(s->core.stop_s);
+  w.put(static_cast<std::int64_t>(s->core.frames));
   for (int i = 0; i < input_count; ++i) w.put(s->core.inputs[i]);
   for (int i = 0; i < kSceneParamCount; ++i) w.put(kSceneParams[i].get(s->core.scene));
   const std::uint64_t k = s->engine->image_size();
@@ -667,6 +668,9 @@ Status Instance::deserialize(const unsigned char* in, std::size_t size, void** s
   r.get(flags);
   r.get(core.start_s);
   r.get(core.stop_s);
+  std::int64_t frames = 0;
+  r.get(frames);
+  core.frames = static_cast<long>(frames);
   for (double& u : core.inputs) r.get(u);
   for (int i = 0; i < kSceneParamCount; ++i) {
     double v = 0;
@@ -674,7 +678,7 @@ Status Instance::deserialize(const unsigned char* in, std::size_t size, void** s
     kSceneParams[i].set(core.scene, v);
   }
   r.get(k);
-  if (!r.ok || mode > static_cast<std::uint8_t>(Mode::terminated) || r.n + k != size) {
+  if (!r.ok || mode > static_cast<std::uint8_t>(Mode::terminated) || frames < 0 || r.n + k != size) {
     log(Status::error, "logStatusError", "deserializeFMUState: %zu bytes: truncated or malformed", size);
     return Status::error;
   }

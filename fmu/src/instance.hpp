@@ -89,6 +89,9 @@ class Instance {
     Mode mode = Mode::instantiated;
     bool failed = false;    // the plant faulted: no step until a state is restored or reset
     bool stale = true;      // parameters or inputs changed since the plant was built (initialisation)
+    // Frames stepped without a fault: the FMU's time is start + frames x
+    // frame_s, the last good frame's after a fault.
+    long frames = 0;
   };
   struct Saved;
 

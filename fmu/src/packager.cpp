@@ -109,7 +109,6 @@ std::string description_of(const PackageRequest& r) {
 }
 
 const char* kFaultType = "cvtplant.Fault";
-const char* kFaultFirst = "none";
 
 void add_units(pugi::xml_node root, const Model& m) {
   std::map<std::string, UnitInfo> used;

@@ -46,6 +46,7 @@ int compare_row(const Unpacked& fmu, const CsvRun& csv, std::size_t row, Get&& g
   int n = 0;
   for (const VarInfo& v : fmu.vars) {
     if (v.causality != "output" && v.causality != "independent") continue;
+    if (v.name == "fault") continue;  // compared by name below
     const int col = csv.column(v.causality == "independent" ? "t" : v.name);
     if (col < 0) continue;
     const double want = csv.rows.at(row).at(static_cast<std::size_t>(col));
@@ -54,6 +55,8 @@ int compare_row(const Unpacked& fmu, const CsvRun& csv, std::size_t row, Get&& g
     CHECK(same_bits(got, want));
     ++n;
   }
+  const auto fault = static_cast<cvt::RomFault>(static_cast<int>(get(fmu.var("fault"))));
+  CHECK(std::string(cvt::rom_fault_name(fault)) == csv.faults.at(row));
   return n;
 }
 
@@ -67,6 +70,7 @@ void set_inputs(const cvt::Scene& s, double t, const Unpacked& fmu, Set&& set) {
 
 double value3(Instance3& inst, const VarInfo& v) {
   if (v.type == "Boolean") return inst.boolean(v.name) ? 1.0 : 0.0;
+  if (v.type == "Enumeration") return static_cast<double>(inst.enumeration(v.name));
   return inst.real(v.name);
 }
 
@@ -140,6 +144,11 @@ TEST_SUITE("importer") {
           fmi2Boolean b = 0;
           api.fmi2GetBoolean(inst.get(), &v.vr, 1, &b);
           return b ? 1.0 : 0.0;
+        }
+        if (v.type == "Enumeration") {
+          fmi2Integer e = -1;
+          api.fmi2GetInteger(inst.get(), &v.vr, 1, &e);
+          return static_cast<double>(e);
         }
         return inst.real(v.name);
       });

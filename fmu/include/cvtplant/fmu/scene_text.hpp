@@ -139,6 +139,10 @@ inline SceneTextIssue read_scene_text(const char* text, std::size_t n, Scene& s,
     ++pos;
     ++line;
     buf[len] = '\0';
+    if (header && std::strcmp(buf, "end") == 0) {
+      end = true;
+      continue;
+    }
     char* sp = std::strchr(buf, ' ');
     if (sp == nullptr) return fail("expected 'key value'");
     *sp = '\0';
@@ -198,9 +202,6 @@ inline SceneTextIssue read_scene_text(const char* text, std::size_t n, Scene& s,
       else if (std::strcmp(val, "tanh") == 0) s.params.friction.sign = SignFunction::tanh;
       else if (std::strcmp(val, "exact") == 0) s.params.friction.sign = SignFunction::exact;
       else return fail("friction.sign: atan, tanh or exact");
-    } else if (std::strcmp(key, "end") == 0) {
-      end = true;
-      continue;
     } else {
       for (int i = 0; i < input_count && k < 0; ++i)
         if (std::strcmp(key, input_name(i)) == 0) {
