@@ -201,7 +201,7 @@ inline std::uint64_t fnv1a(const char* data, std::size_t n, std::uint64_t h = 14
 // room for 39 bytes.
 inline void instantiation_token(const char* text, std::size_t n, char* out) {
   const std::uint64_t a = fnv1a(text, n), b = fnv1a(text, n, a ^ 0x9e3779b97f4a7c15ull);
-  static const char* hex = "0123456789abcdef";
+  constexpr const char* hex = "0123456789abcdef";
   const char* layout = "{........-....-....-....-............}";
   int bit = 0;
   for (int i = 0; layout[i] != '\0'; ++i) {
