@@ -374,3 +374,35 @@ TEST_SUITE("importer") {
     CHECK(!same(alone[0], alone[1]));
   }
 }
+
+TEST_SUITE("importer") {
+  TEST_CASE("the driven clamping input reaches F_ax2 through the actuator's first-order lag (closed form)") {
+    const std::string dir = temp_dir("fmu-driven");
+    const Unpacked fmu(fmu_of("ratio-control", 3, dir), dir + "/unpacked");
+    const Api3 api(fmu.binary());
+    Instance3 inst(api, fmu);
+    REQUIRE(inst.ok());
+    REQUIRE(api.fmi3EnterInitializationMode(inst.get(), false, 0, 0, false, 0) == fmi3OK);
+    const double f0 = inst.real("params.driven_clamp_N"), tau = inst.real("params.actuator_tau_s");
+    CHECK(inst.real("inputs.clamp_driven") == f0);  // its start is the set-up value
+    CHECK(inst.real("F_ax2") == f0);
+    REQUIRE(api.fmi3ExitInitializationMode(inst.get()) == fmi3OK);
+    CHECK(!inst.boolean("stop_underdrive"));
+    CHECK(!inst.boolean("stop_overdrive"));
+    // docs/rom.md#driven-clamping: F += (F_cmd - F)(1 - exp(-frame/tau)) once a frame.
+    const double cmd = 5000.0, h = fmu.frame_s;
+    REQUIRE(inst.set("inputs.clamp_driven", cmd) == fmi3OK);
+    for (int n = 1; n <= 40; ++n) {
+      REQUIRE(inst.step((n - 1) * h, h) == fmi3OK);
+      const double want = cmd + (f0 - cmd) * std::exp(-n * h / tau);
+      INFO("frame " << n);
+      CHECK(inst.real("F_ax2") == doctest::Approx(want).epsilon(1e-12));
+    }
+    // Saturated at clamp_max_N, like the driver's actuator.
+    const double fmax = inst.real("params.clamp_max_N");
+    const double before = inst.real("F_ax2");
+    REQUIRE(inst.set("inputs.clamp_driven", 10 * fmax) == fmi3OK);
+    REQUIRE(inst.step(40 * h, h) == fmi3OK);
+    CHECK(inst.real("F_ax2") == doctest::Approx(fmax + (before - fmax) * std::exp(-h / tau)).epsilon(1e-12));
+  }
+}
