@@ -4,6 +4,7 @@
 #include <zip.h>
 
 #include <array>
+#include <iterator>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -244,7 +245,21 @@ std::string fmi3_description(const PackageRequest& r, const Model& m) {
   return xml_text(doc);
 }
 
-const char* const kSources[] = {"fmu/src/instance.cpp", "fmu/src/fmi3.cpp", "fmu/src/fmi2.cpp"};
+// The files a build of sources/ compiles: one per file of fmu/src, each
+// naming this scene's plant first (sources_unit), so a build needs no
+// definitions of its own.
+const char* const kSources[] = {"cvtplant_fmu_instance.cpp", "cvtplant_fmu_fmi3.cpp", "cvtplant_fmu_fmi2.cpp"};
+const char* const kSourceOf[] = {"fmu/src/instance.cpp", "fmu/src/fmi3.cpp", "fmu/src/fmi2.cpp"};
+
+std::string sources_unit(const PackageRequest& r, const char* file) {
+  std::ostringstream o;
+  o << "// The FMU's plant for scene " << r.name << " only: its features and scalar (written by cvtplant fmu).\n"
+    << "#define EIGEN_MPL2_ONLY\n"
+    << "#define CVT_FMU_FEATURES " << r.scene.features << "\n"
+    << "#define CVT_FMU_SCALAR " << static_cast<int>(r.scene.scalar) << "\n"
+    << "#include \"" << file << "\"\n";
+  return o.str();
+}
 
 std::string fmi2_description(const PackageRequest& r, const Model& m) {
   pugi::xml_document doc;
@@ -319,7 +334,7 @@ std::string fmi2_description(const PackageRequest& r, const Model& m) {
   return xml_text(doc);
 }
 
-std::string build_description(const PackageRequest& r, const Model& m) {
+std::string build_description(const Model& m) {
   pugi::xml_document doc;
   pugi::xml_node decl = doc.append_child(pugi::node_declaration);
   decl.append_attribute("version") = "1.0";
@@ -335,16 +350,7 @@ std::string build_description(const PackageRequest& r, const Model& m) {
   set.append_attribute("language") = "C++17";
   set.append_attribute("compilerOptions") = "-O2 -ffp-contract=off -fno-fast-math -fno-exceptions -fno-rtti";
   for (const char* f : kSources) set.append_child("SourceFile").append_attribute("name") = f;
-  auto define = [&](const char* name, const std::string& value) {
-    pugi::xml_node d = set.append_child("PreprocessorDefinition");
-    d.append_attribute("name") = name;
-    if (!value.empty()) d.append_attribute("value") = value.c_str();
-  };
-  define("CVT_FMU_FEATURES", std::to_string(r.scene.features));
-  define("CVT_FMU_SCALAR", std::to_string(static_cast<int>(r.scene.scalar)));
-  define("EIGEN_MPL2_ONLY", "");
-  for (const char* d : {"fmu/include", "lib/include", "eigen"})
-    set.append_child("IncludeDirectory").append_attribute("name") = d;
+  set.append_child("IncludeDirectory").append_attribute("name") = ".";
   return xml_text(doc);
 }
 
@@ -367,11 +373,7 @@ std::string cmake_lists(const PackageRequest& r, const Model& m) {
     << " PROPERTIES PREFIX \"\" CXX_STANDARD 17 CXX_STANDARD_REQUIRED ON CXX_VISIBILITY_PRESET hidden)\n"
        "target_include_directories("
     << m.id
-    << " PRIVATE fmu/include lib/include eigen)\n"
-       "target_compile_definitions("
-    << m.id << " PRIVATE CVT_FMU_FEATURES=" << r.scene.features
-    << " CVT_FMU_SCALAR=" << static_cast<int>(r.scene.scalar)
-    << " EIGEN_MPL2_ONLY)\n"
+    << " PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})\n"
        "target_compile_options("
     << m.id << " PRIVATE -ffp-contract=off -fno-fast-math -fno-exceptions -fno-rtti)\n";
   return o.str();
@@ -451,7 +453,9 @@ std::vector<FmuFile> generated_files(const PackageRequest& r) {
   f.push_back({"resources/scene.txt", m.scene_text});
   f.push_back({"documentation/index.html", documentation(r, m)});
   f.push_back({"sources/CMakeLists.txt", cmake_lists(r, m)});
-  if (r.fmi_version == 3) f.push_back({"sources/buildDescription.xml", build_description(r, m)});
+  for (std::size_t i = 0; i < std::size(kSources); ++i)
+    f.push_back({std::string("sources/") + kSources[i], sources_unit(r, kSourceOf[i])});
+  if (r.fmi_version == 3) f.push_back({"sources/buildDescription.xml", build_description(m)});
   return f;
 }
 

@@ -311,7 +311,8 @@ TEST_SUITE("model_description") {
       CHECK(c.parameters >= 35);
       CHECK(std::filesystem::is_regular_file(fmu.dir + "/documentation/index.html"));
       CHECK(std::filesystem::is_regular_file(fmu.dir + "/resources/scene.txt"));
-      CHECK(std::filesystem::is_regular_file(fmu.dir + "/sources/eigen/Eigen/Core"));
+      CHECK(std::filesystem::is_regular_file(fmu.dir + "/sources/Eigen/Core"));
+      CHECK(std::filesystem::is_regular_file(fmu.dir + "/sources/cvtplant/scene/plant_set.hpp"));
       if (version == 3) {
         pugi::xml_document bd;
         REQUIRE(bd.load_file((fmu.dir + "/sources/buildDescription.xml").c_str()));
