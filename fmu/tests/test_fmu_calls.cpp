@@ -406,3 +406,22 @@ TEST_SUITE("importer") {
     CHECK(inst.real("F_ax2") == doctest::Approx(fmax + (before - fmax) * std::exp(-h / tau)).epsilon(1e-12));
   }
 }
+
+TEST_SUITE("importer") {
+  TEST_CASE("q16.16: inputs stay within +-32767 (off the rail, where the watchdog would fault input-saturated)") {
+    const std::string dir = temp_dir("fmu-fixed-range");
+    const std::string scene = dir + "/fixed.toml";
+    std::ofstream(scene) << "base = \"clamp-step\"\nname = \"clamp-step-fixed\"\nscalar = \"fixed\"\n";
+    const Unpacked fmu(fmu_of(scene, 3, dir), dir + "/unpacked");
+    const Api3 api(fmu.binary());
+    Instance3 inst(api, fmu);
+    REQUIRE(inst.init() == fmi3OK);
+    CHECK(inst.set("inputs.clamp", 32767.0) == fmi3OK);
+    CHECK(inst.set("inputs.clamp", 32768.0) == fmi3Error);
+    CHECK(inst.log.has("outside its range"));
+    CHECK(inst.set("inputs.tau_in", -32768.0) == fmi3Error);
+    CHECK(inst.real("inputs.clamp") == 32767.0);
+    CHECK(inst.step(0.0, fmu.frame_s) == fmi3OK);
+    CHECK(inst.enumeration("fault") == 0);
+  }
+}

@@ -76,10 +76,14 @@ void check_common(const std::string& causality, const std::string& variability, 
     CHECK((initial.empty() || initial == "exact"));
   }
   if (causality == "input") {
+    CHECK((variability == "discrete" || variability == "continuous"));
     CHECK(has_start);
     CHECK(initial.empty());
   }
-  if (causality == "output") CHECK(((initial.empty() || initial == "calculated") ? !has_start : true));
+  if (causality == "output") {
+    CHECK((variability == "constant" || variability == "discrete" || variability == "continuous"));
+    CHECK(((initial.empty() || initial == "calculated") ? !has_start : true));
+  }
   if (causality == "independent") {
     INFO("independent variable of type " << type);
     CHECK(is_float);
