@@ -110,9 +110,15 @@ cvt::mbd::StartAtSpeed parse_omega0(const std::string& text) {
 }  // namespace
 
 void add_model_options(CLI::App* sub, ModelOptions& o) {
-  add_real(sub, "--t-end", o.t_end_s, {1e-6, 3600}, "Simulated time after the release [s] (default 10)");
-  sub->add_option("--sheaves", o.sheaves, "fixed (the seed's pulleys) | clamped (movable sheave per pulley, axial force given)")
+  sub->add_option("--set", o.set,
+                  "Parameter set: seed (Table 1, with --case) | production (the production-like chain CVT, "
+                  "docs/mbd-production.md)")
       ->capture_default_str()
+      ->check(CLI::IsMember({"seed", "production"}));
+  add_real(sub, "--t-end", o.t_end_s, {1e-6, 3600}, "Simulated time after the release [s] (default 10)");
+  sub->add_option("--sheaves", o.sheaves,
+                  "fixed (the seed's pulleys) | clamped (movable sheave per pulley, axial force given); default: "
+                  "fixed for the seed set, clamped for production")
       ->check(CLI::IsMember({"fixed", "clamped"}));
   o.clamp1_opt = sub->add_option("--clamp-N", o.clamp1,
                                  "Driver clamping force for --sheaves clamped: F, or a profile t:F,t:F,... [s:N], F in [100, 1e5]");
@@ -123,7 +129,7 @@ void add_model_options(CLI::App* sub, ModelOptions& o) {
       ->check(CLI::IsMember({"bdf", "rk4"}));
   o.dt_opt = add_real(sub, "--dt", o.dt_s, {1e-8, 1e-4}, "RK4 step [s] (default 1e-6)");
   o.rtol_opt = add_real(sub, "--rtol", o.rtol, {1e-11, 1e-3}, "BDF relative tolerance (default 5e-7)");
-  add_int(sub, "--links", o.links, 36, 53, "Number of links N; sets the pretension (default 44)");
+  o.links_opt = add_int(sub, "--links", o.links, 36, 53, "Number of links N of the seed set; sets the pretension (default 44)");
   add_real(sub, "--sample", o.sample_s, {1e-6, 3600}, "Output interval [s], at most --t-end (default 1e-3)");
   sub->add_option("--tau-in", o.tau_in,
                   "Driver torque from the release: T, or a profile t:T,t:T,... [s:N m], T in [-1000, 1000]")
@@ -154,6 +160,8 @@ void validate(const ModelOptions& o) {
   // the ranges that depend on another flag, and the combinations.
   if (o.sample_s > o.t_end_s)
     throw UsageError{"--sample: " + exact_number(o.sample_s) + " s is above --t-end " + exact_number(o.t_end_s) + " s"};
+  if (o.production() && o.links_opt != nullptr && o.links_opt->count() > 0)
+    throw UsageError{"--links applies to --set seed (the production set has 53 links)"};
   parse_torque(o.tau_in, "--tau-in");
   parse_torque(o.tau_load, "--tau-load");
   if (o.road_opt != nullptr && o.road_opt->count() > 0) parse_road_load(o.road_load);
@@ -172,7 +180,7 @@ void validate(const ModelOptions& o) {
                      std::to_string(o.max_rows) + " (raise --max-rows or --sample)"};
   const bool given1 = o.clamp1_opt != nullptr && o.clamp1_opt->count() > 0;
   const bool given2 = o.clamp2_opt != nullptr && o.clamp2_opt->count() > 0;
-  if (o.sheaves == "clamped") {
+  if (o.sheave_mode() == "clamped") {
     if (!given1) throw UsageError{"--sheaves clamped needs --clamp-N"};
     parse_clamp(o.clamp1, "--clamp-N");
     if (given2) parse_clamp(o.clamp2, "--clamp2-N");
@@ -182,13 +190,20 @@ void validate(const ModelOptions& o) {
 }
 
 cvt::mbd::MbdParams params_for(const ModelOptions& o, int friction_case) {
-  cvt::mbd::MbdParams p = cvt::mbd::seed_case(friction_case);
-  p.links = o.links;
+  cvt::mbd::MbdParams p = o.production() ? cvt::mbd::production_set() : cvt::mbd::seed_case(friction_case);
+  if (!o.production()) p.links = o.links;
   p.tau_in_Nm = parse_torque(o.tau_in, "--tau-in");
   p.tau_load_Nm = parse_torque(o.tau_load, "--tau-load");
   if (!o.road_load.empty()) p.road = parse_road_load(o.road_load);
-  if (!o.omega0.empty()) p.start = parse_omega0(o.omega0);
-  if (o.sheaves == "clamped") {
+  if (!o.omega0.empty()) {
+    // The set's own spin-up and hold (the production set: 0.2 s each).
+    const cvt::mbd::StartAtSpeed w = parse_omega0(o.omega0);
+    p.start.active = true;
+    p.start.omega1_rad_s = w.omega1_rad_s;
+    p.start.omega2_rad_s = w.omega2_rad_s;
+  }
+  p.sheaves = SheaveMode::fixed;
+  if (o.sheave_mode() == "clamped") {
     p.sheaves = SheaveMode::clamped;
     p.clamp1_N = parse_clamp(o.clamp1, "--clamp-N");
     if (!o.clamp2.empty()) p.clamp2_N = parse_clamp(o.clamp2, "--clamp2-N");
@@ -205,6 +220,9 @@ cvt::mbd::RunOptions run_options_for(const ModelOptions& o) {
   r.sample_s = o.sample_s;
   r.max_steps = step_cap(o);
   r.ledger_tol = o.ledger_tol;
+  // docs/mbd.md#start-up: the production set's stiff chain settles and
+  // spins up at 1e-6 (1e-8 costs it about 6x the steps); the seed's at 1e-8.
+  if (o.production()) r.settle_rtol = 1e-6;
   return r;
 }
 
@@ -355,13 +373,14 @@ nlohmann::json summary_json(const ModelOptions& o, int friction_case, const RunO
   j["subcommand"] = "mbd";
   j["status"] = status_of(r);
   if (r.failed) j["failure"] = {{"t_s", r.fail_t_s}, {"quantity", r.fail_quantity}};
-  j["case"] = friction_case;
-  j["friction"] = friction_case == 1 ? "case1" : "case2";
+  j["set"] = o.set;
+  j["case"] = o.production() ? nlohmann::json(nullptr) : nlohmann::json(friction_case);
+  j["friction"] = o.production() ? "production" : friction_case == 1 ? "case1" : "case2";
   j["method"] = o.method;
   j["rtol"] = o.method == "bdf" ? nlohmann::json(o.rtol) : nlohmann::json(nullptr);
   j["dt_s"] = o.method == "rk4" ? nlohmann::json(o.dt_s) : nlohmann::json(nullptr);
-  j["sheaves"] = o.sheaves;
-  j["links"] = o.links;
+  j["sheaves"] = o.sheave_mode();
+  j["links"] = o.production() ? cvt::mbd::production_set().links : o.links;
   j["t_end_s"] = o.t_end_s;
   j["t_reached_s"] = measured(s.last.t_s);
   j["sample_s"] = o.sample_s;
@@ -369,6 +388,7 @@ nlohmann::json summary_json(const ModelOptions& o, int friction_case, const RunO
   j["wall_s"] = st.wall_s;
   j["cpu_s"] = st.cpu_s;
   j["settle_wall_s"] = st.settle_wall_s;
+  j["settle_cpu_s"] = st.settle_cpu_s;
   j["steps"] = st.steps;
   j["rhs_evals"] = st.rhs_evals;
   j["jac_evals"] = st.jac_evals;
@@ -417,8 +437,10 @@ void print_text(std::FILE* out, const ModelOptions& o, int c, const RunOutcome& 
   const auto& s = r.summary;
   const bool sampled = st.samples > 0;
   const auto v = [&](double x, const char* f) { return text_number(sampled ? x : std::nan(""), f); };
-  std::fprintf(out, "Multibody chain CVT, seed %s, %d links, %s sheaves, %s%s\n", case_label(c).c_str(), o.links,
-               o.sheaves.c_str(), method_label(o).c_str(), r.interrupted ? " (interrupted)" : "");
+  std::fprintf(out, "Multibody chain CVT, %s, %d links, %s sheaves, %s%s\n",
+               o.production() ? "production-like set" : ("seed " + case_label(c)).c_str(),
+               o.production() ? cvt::mbd::production_set().links : o.links, o.sheave_mode().c_str(),
+               method_label(o).c_str(), r.interrupted ? " (interrupted)" : "");
   std::fprintf(out, "  t = %s s: omega1 %s rad/s, omega2 %s rad/s, ratio %s (mean over the run %s)\n",
                v(s.last.t_s, "%g").c_str(), v(s.omega_end_rad_s[0], "%.3f").c_str(),
                v(s.omega_end_rad_s[1], "%.3f").c_str(), v(s.ratio_end, "%.4f").c_str(), v(s.ratio_mean, "%.4f").c_str());
@@ -469,7 +491,9 @@ Action register_mbd(CLI::App& app) {
   return [opt, sub]() -> int {
     if (opt->figures->parsed()) return run_figures(opt->fig);
     const ModelOptions& m = opt->model;
-    if (opt->friction_case == 0) throw UsageError{"--case 1|2 is required"};
+    if (m.production() && opt->friction_case != 0)
+      throw UsageError{"--case applies to --set seed (the production set has its own friction)"};
+    if (!m.production() && opt->friction_case == 0) throw UsageError{"--case 1|2 is required"};
     validate(m);
     const bool has_csv = sub->count("--csv") > 0, has_links = sub->count("--links-csv") > 0;
     double every = m.sample_s;
@@ -480,7 +504,7 @@ Action register_mbd(CLI::App& app) {
           throw UsageError{"--links-every: " + exact_number(every) + " s is outside [--sample " +
                            exact_number(m.sample_s) + " s, --t-end " + exact_number(m.t_end_s) + " s]"};
       }
-      const double rows = (std::floor(m.t_end_s / every) + 1.0) * m.links;
+      const double rows = (std::floor(m.t_end_s / every) + 1.0) * (m.production() ? 53 : m.links);
       if (rows > static_cast<double>(m.max_rows))
         throw UsageError{"--links-csv: " + num(rows) + " rows exceed --max-rows (raise it or --links-every)"};
     } else if (opt->links_every_opt->count() > 0) {
@@ -494,7 +518,7 @@ Action register_mbd(CLI::App& app) {
     std::FILE* csv = has_csv ? open_output(opt->csv, "--csv") : nullptr;
     std::FILE* links = has_links ? open_output(opt->links_csv, "--links-csv") : nullptr;
     const RunOutcome r = run_case(m, opt->friction_case, csv, links, every, -1,
-                                  "mbd " + case_label(opt->friction_case));
+                                  m.production() ? std::string("mbd production") : "mbd " + case_label(opt->friction_case));
     close_output(csv);
     close_output(links);
     // With a CSV on stdout the text summary goes to stderr: stdout holds data only.
