@@ -150,7 +150,8 @@ void add_model_options(CLI::App* sub, ModelOptions& o) {
 }
 
 long long step_cap(const ModelOptions& o) {
-  const ReferenceWork w = o.method == "rk4" ? rk4_work(o.t_end_s, o.dt_s) : bdf_work(o.t_end_s, o.rtol);
+  const double rate = o.production() ? kProductionBdfStepsPerSecond : kSeedBdfStepsPerSecond;
+  const ReferenceWork w = o.method == "rk4" ? rk4_work(o.t_end_s, o.dt_s) : bdf_work(o.t_end_s, o.rtol, rate);
   const bool given = o.max_steps_opt != nullptr && o.max_steps_opt->count() > 0;
   return cvtcli::step_cap(w, given, static_cast<double>(o.max_steps));
 }

@@ -12,11 +12,6 @@ namespace cvtcli {
 
 namespace {
 
-// Measured BDF steps per simulated second at rtol 5e-7: 33,748 and 44,794
-// over 10 s of the seed cases (docs/mbd.md#speed), 9,174 to 49,560 over the
-// validation scenes (docs/validation.md's cost table); the estimate takes
-// the top of that range.
-constexpr double kBdfStepsPerSecond = 50000.0;
 constexpr double kBdfRtolRef = 5e-7;
 // Over the first second of the seed cases the steps grow as rtol^(-1/7):
 // 4.7x from 5e-7 to 1e-11 (case 2: 20,197 -> 94,818).
@@ -33,9 +28,9 @@ std::string g(double v) {
 
 }  // namespace
 
-ReferenceWork bdf_work(double t_end_s, double rtol) {
+ReferenceWork bdf_work(double t_end_s, double rtol, double steps_per_s) {
   const double factor = rtol < kBdfRtolRef ? std::pow(kBdfRtolRef / rtol, kBdfRtolExponent) : 1.0;
-  const double rate = kBdfStepsPerSecond * factor;
+  const double rate = steps_per_s * factor;
   return {t_end_s * rate, g(t_end_s) + " s x " + fmt_count(std::round(rate)) + " BDF steps per simulated second at rtol " +
                               g(rtol)};
 }

@@ -13,9 +13,17 @@ struct ReferenceWork {
   std::string how;   // how it was estimated, for the message
 };
 
-// BDF after the release: t_end x 50,000 steps per simulated second at
-// rtol >= 5e-7, times (5e-7 / rtol)^(1/7) below (4.7x at 1e-11).
-ReferenceWork bdf_work(double t_end_s, double rtol);
+// Measured BDF steps per simulated second at rtol 5e-7, the top of each
+// set's range. The seed's Table 1: 33,748 and 44,794 over 10 s of the seed
+// cases (docs/mbd.md#speed), 9,174 to 49,560 over the validation scenes
+// (docs/validation.md). The production-like set's stiffer chain: 130,000 to
+// 177,000 (docs/mbd-production.md#cost).
+constexpr double kSeedBdfStepsPerSecond = 50000.0;
+constexpr double kProductionBdfStepsPerSecond = 180000.0;
+
+// BDF after the release: t_end x `steps_per_s` at rtol >= 5e-7, times
+// (5e-7 / rtol)^(1/7) below (4.7x at 1e-11).
+ReferenceWork bdf_work(double t_end_s, double rtol, double steps_per_s = kSeedBdfStepsPerSecond);
 // RK4: exactly t_end / dt steps.
 ReferenceWork rk4_work(double t_end_s, double dt_s);
 

@@ -423,6 +423,9 @@ class Caps(Case):
         line = self.refused(["mbd", "--case", "1", "--t-end", "0.02", "--max-steps", "100"],
                             "needs an estimated 1000 integrator steps")
         self.assertIn("raise it with --max-steps", line)
+        # The production set's stiffer chain: its own measured rate.
+        line = self.refused(["mbd", "--set", "production", "--t-end", "0.02", "--max-steps", "100"],
+                            "needs an estimated 3600 integrator steps (0.02 s x 180000 BDF steps per simulated second")
         line = self.refused(["mbd", "--case", "1", "--t-end", "3600", "--rtol", "1e-11"], "above the cap of 1e+08")
         self.assertIn("rtol 1e-11", line)
         self.refused(["validate", "--scene", "seed-case1", "--max-steps", "10", "--out-dir", "/nonexistent/x"],
