@@ -64,7 +64,9 @@ TEST_SUITE("cli") {
     const std::string good = dir + "/good.toml";
     std::ofstream(good) << "base = \"tip-in\"\n";
     const std::string before = bytes_of(good);
-    bad_input(cli("--scene " + good + " --out " + good, dir), "is the scene file");
+    bad_input(cli("--scene " + good + " --out " + good, dir), "is the input of --scene");
+    std::filesystem::create_symlink(good, dir + "/link.fmu");
+    bad_input(cli("--scene " + good + " --out " + dir + "/link.fmu", dir), "is the input of --scene");
     CHECK(bytes_of(good) == before);
     CHECK(!std::filesystem::exists(dir + "/x.fmu"));
   }

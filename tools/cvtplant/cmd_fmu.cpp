@@ -8,6 +8,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "cvtplant/files/paths.hpp"
 #include "cvtplant/fmu/packager.hpp"
 #include "io_util.hpp"
 #include "registry.hpp"
@@ -38,9 +39,11 @@ cvtcli::Action register_fmu(CLI::App& app) {
     // The plant must exist for the scene's scalar (wedging: floating point only).
     cvtcli::check_scene_simulator(s, s.scalar);
     if (o.out == "-") throw cvtcli::UsageError{"--out: an FMU is a zip file; give a path"};
-    if (o.out.empty()) throw cvtcli::UsageError{"--out: empty file name"};
-    if (loaded->source != "built-in" && cvtcli::same_file(o.out, loaded->source))
-      throw cvtcli::UsageError{"--out: " + o.out + " is the scene file; writing would destroy it"};
+    // The scene file is read, the FMU written: never the one over the other,
+    // through a link too (docs/cli.md#files).
+    cvt::files::CommandFiles files;
+    if (loaded->source != "built-in") files.input("--scene", loaded->source);
+    files.output("--out", o.out);
     struct stat st {};
     if (::stat(o.out.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
       throw cvtcli::UsageError{"--out: " + o.out + " is a directory"};
