@@ -188,9 +188,15 @@ class Failures(unittest.TestCase):
         j = json.loads(r.stdout)
         self.assertEqual(j["status"], "failed")
         self.assertIn("energy ledger", j["failure"]["quantity"])
+        # A cap below the run's estimated work is refused before the run
+        # (docs/cli.md#caps); one at the estimate that the run needs more
+        # than (184 steps over 2 ms, estimated at 100) stops it.
         r = run("mbd", "--case", "1", "--t-end", "0.1", "--max-steps", "30")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("needs an estimated 5000 integrator steps", r.stderr)
+        r = run("mbd", "--case", "1", "--t-end", "0.002", "--max-steps", "100")
         self.assertEqual(r.returncode, 1)
-        self.assertIn("step cap of 30 steps", r.stderr)
+        self.assertIn("step cap of 100 steps", r.stderr)
 
 
 class Progress(unittest.TestCase):
