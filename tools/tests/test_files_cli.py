@@ -10,7 +10,7 @@ computed is null (JSON) or n/a (text), bad input is refused with the flag
 and the value as given, and CSV inputs are read once, whatever their bytes.
 
 usage: test_files_cli.py CVTPLANT [CVTPLANT_SIL] [CVTPLANT_BRIDGE]
-Cost: about 40 s on the host-release build (reference runs of 10 to 20 ms,
+Cost: about 25 s on the host-release build (reference runs of 10 to 20 ms,
 interrupted runs stopped after a second).
 """
 import csv
