@@ -15,6 +15,8 @@ namespace cvt::mbd {
 inline constexpr NamedValue<SheaveMode> kSheaveModeNames[] = {{"fixed", SheaveMode::fixed},
                                                               {"clamped", SheaveMode::clamped}};
 inline constexpr NamedValue<Method> kMethodNames[] = {{"bdf", Method::bdf}, {"rk4", Method::rk4}};
+constexpr const auto& value_names(SheaveMode) { return kSheaveModeNames; }
+constexpr const auto& value_names(Method) { return kMethodNames; }
 
 // v(const ParamField&, field&) for every field of MbdParams (P: MbdParams or
 // const MbdParams); the field is a double, an int, a bool, an enum or a
