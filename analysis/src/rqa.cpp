@@ -363,6 +363,28 @@ class Grid {
   std::size_t n_near_ = 0;
 };
 
+// From a histogram of line lengths (index: length): the recurrent points it
+// counts, those on lines of at least min_length, the number of such lines
+// and the longest: DET, L and Lmax from the diagonals, LAM, TT and Vmax
+// from the verticals (docs/analysis.md#rqa).
+struct LineCounts {
+  double all = 0, on_lines = 0, lines = 0;
+  long longest = 0;
+};
+LineCounts line_counts(const std::vector<std::uint64_t>& hist, int min_length) {
+  LineCounts c;
+  for (std::size_t l = 1; l < hist.size(); ++l) {
+    const double n = static_cast<double>(hist[l]);
+    c.all += n * l;
+    if (static_cast<int>(l) >= min_length && n > 0) {
+      c.on_lines += n * l;
+      c.lines += n;
+      c.longest = static_cast<long>(l);
+    }
+  }
+  return c;
+}
+
 RqaResult finish(const Histograms& hist, std::uint64_t rec_upper, const Embedding& e, const RqaOptions& opt, double eps,
                  int w) {
   RqaResult r;
@@ -378,35 +400,19 @@ RqaResult finish(const Histograms& hist, std::uint64_t rec_upper, const Embeddin
   r.recurrences = 2 * rec_upper;
   r.rr = upper > 0 ? static_cast<double>(rec_upper) / static_cast<double>(upper) : 0.0;
   // Diagonal measures on the upper triangle (identical to both triangles).
-  double all_pts = 0, line_pts = 0, lines = 0;
-  for (std::size_t l = 1; l < hist.diag.size(); ++l) {
-    const double c = static_cast<double>(hist.diag[l]);
-    all_pts += c * l;
-    if (static_cast<int>(l) >= opt.lmin && c > 0) {
-      line_pts += c * l;
-      lines += c;
-      r.lmax = static_cast<long>(l);
-    }
-  }
-  r.det = all_pts > 0 ? line_pts / all_pts : 0;
-  r.l_mean = lines > 0 ? line_pts / lines : 0;
+  const LineCounts d = line_counts(hist.diag, opt.lmin);
+  r.lmax = d.longest;
+  r.det = d.all > 0 ? d.on_lines / d.all : 0;
+  r.l_mean = d.lines > 0 ? d.on_lines / d.lines : 0;
   for (std::size_t l = static_cast<std::size_t>(opt.lmin); l < hist.diag.size(); ++l) {
     if (hist.diag[l] == 0) continue;
-    const double p = static_cast<double>(hist.diag[l]) / lines;
+    const double p = static_cast<double>(hist.diag[l]) / d.lines;
     r.entr -= p * std::log(p);
   }
-  double v_all = 0, v_line = 0, v_lines = 0;
-  for (std::size_t v = 1; v < hist.vert.size(); ++v) {
-    const double c = static_cast<double>(hist.vert[v]);
-    v_all += c * v;
-    if (static_cast<int>(v) >= opt.vmin && c > 0) {
-      v_line += c * v;
-      v_lines += c;
-      r.vmax = static_cast<long>(v);
-    }
-  }
-  r.lam = v_all > 0 ? v_line / v_all : 0;
-  r.tt = v_lines > 0 ? v_line / v_lines : 0;
+  const LineCounts v = line_counts(hist.vert, opt.vmin);
+  r.vmax = v.longest;
+  r.lam = v.all > 0 ? v.on_lines / v.all : 0;
+  r.tt = v.lines > 0 ? v.on_lines / v.lines : 0;
   return r;
 }
 
