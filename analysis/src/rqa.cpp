@@ -454,18 +454,23 @@ RqaResult rqa(const Embedding& e, const RqaOptions& opt) {
   return finish(hist, rec_upper, e, opt, eps, w);
 }
 
-RqaResult rqa_kdtree(const Embedding& e, const RqaOptions& opt) {
+namespace {
+
+// The RQA of e with the recurrent points of each row i (j != i, outside the
+// Theiler window, within eps) given by within(i, eps, w, row): the two
+// neighbour searches below share every count.
+template <class Within>
+RqaResult rqa_rows(const Embedding& e, const RqaOptions& opt, Within&& within) {
   check(e, opt);
   const int w = opt.theiler;
   const double eps = opt.eps > 0 ? opt.eps : radius_for_rr(e, opt.target_rr, w);
-  const NeighbourIndex index(e);
   Histograms hist(e.n);
   LineCounter lc(e.n, hist);
   std::vector<std::uint32_t> row;
   std::uint64_t rec_upper = 0;
   for (std::size_t i = 0; i < e.n; ++i) {
     if ((i & 4095) == 0 && opt.progress) opt.progress(static_cast<double>(i), static_cast<double>(e.n));
-    index.within(i, eps, w, row);
+    within(i, eps, w, row);
     for (std::uint32_t j : row)
       if (j > i) {
         lc.diag_point(i, j);
@@ -477,29 +482,24 @@ RqaResult rqa_kdtree(const Embedding& e, const RqaOptions& opt) {
   return finish(hist, rec_upper, e, opt, eps, w);
 }
 
+}  // namespace
+
+RqaResult rqa_kdtree(const Embedding& e, const RqaOptions& opt) {
+  check(e, opt);  // before the index is built
+  const NeighbourIndex index(e);
+  return rqa_rows(e, opt, [&](std::size_t i, double eps, int w, std::vector<std::uint32_t>& row) {
+    index.within(i, eps, w, row);
+  });
+}
+
 RqaResult rqa_naive(const Embedding& e, const RqaOptions& opt) {
-  check(e, opt);
-  const int w = opt.theiler;
-  const double eps = opt.eps > 0 ? opt.eps : radius_for_rr(e, opt.target_rr, w);
-  Histograms hist(e.n);
-  LineCounter lc(e.n, hist);
-  std::vector<std::uint32_t> row;
-  std::uint64_t rec_upper = 0;
-  for (std::size_t i = 0; i < e.n; ++i) {
+  return rqa_rows(e, opt, [&](std::size_t i, double eps, int w, std::vector<std::uint32_t>& row) {
     row.clear();
     for (std::size_t j = 0; j < e.n; ++j) {
       if (std::labs(static_cast<long>(i) - static_cast<long>(j)) <= w) continue;
       if (euclid(e.row(i), e.row(j), e.m) <= eps) row.push_back(static_cast<std::uint32_t>(j));
     }
-    for (std::uint32_t j : row)
-      if (j > i) {
-        lc.diag_point(i, j);
-        ++rec_upper;
-      }
-    lc.row_runs(row);
-  }
-  lc.flush();
-  return finish(hist, rec_upper, e, opt, eps, w);
+  });
 }
 
 void write_recurrence_png(const Embedding& e, double eps, int theiler, const std::string& path, int max_pixels) {

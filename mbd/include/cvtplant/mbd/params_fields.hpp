@@ -47,17 +47,16 @@ void visit_mbd_params(P& p, V&& v) {
   visit_friction_fields(p.friction, in("friction"));
   v(ParamField{"tau_in_Nm", "N.m"}, p.tau_in_Nm);
   v(ParamField{"tau_load_Nm", "N.m"}, p.tau_load_Nm);
-  {
-    const auto road = in("road");
-    road(ParamField{"T0_Nm", "N.m"}, p.road.T0_Nm);
-    road(ParamField{"cv_Nms_rad", "N.m.s/rad"}, p.road.cv_Nms_rad);
-    road(ParamField{"ca_Nms2_rad2", "N.m.s^2/rad^2"}, p.road.ca_Nms2_rad2);
-    road(ParamField{"w_eps_rad_s", "rad/s"}, p.road.w_eps_rad_s);
-  }
-  in("hold1")(ParamField{"active", ""}, p.hold1.active);
-  in("hold1")(ParamField{"omega_rad_s", "rad/s"}, p.hold1.omega_rad_s);
-  in("hold2")(ParamField{"active", ""}, p.hold2.active);
-  in("hold2")(ParamField{"omega_rad_s", "rad/s"}, p.hold2.omega_rad_s);
+  const auto road = in("road");
+  road(ParamField{"T0_Nm", "N.m"}, p.road.T0_Nm);
+  road(ParamField{"cv_Nms_rad", "N.m.s/rad"}, p.road.cv_Nms_rad);
+  road(ParamField{"ca_Nms2_rad2", "N.m.s^2/rad^2"}, p.road.ca_Nms2_rad2);
+  road(ParamField{"w_eps_rad_s", "rad/s"}, p.road.w_eps_rad_s);
+  const auto hold1 = in("hold1"), hold2 = in("hold2");
+  hold1(ParamField{"active", ""}, p.hold1.active);
+  hold1(ParamField{"omega_rad_s", "rad/s"}, p.hold1.omega_rad_s);
+  hold2(ParamField{"active", ""}, p.hold2.active);
+  hold2(ParamField{"omega_rad_s", "rad/s"}, p.hold2.omega_rad_s);
   v(ParamField{"sheaves", ""}, p.sheaves);
   v(ParamField{"clamp1_N", "N"}, p.clamp1_N);
   v(ParamField{"clamp2_N", "N"}, p.clamp2_N);
@@ -67,14 +66,12 @@ void visit_mbd_params(P& p, V&& v) {
   v(ParamField{"sheave_stop_N_m", "N/m"}, p.sheave_stop_N_m);
   v(ParamField{"settle_s", "s"}, p.settle_s);
   v(ParamField{"settle_drag_Ns_m", "N.s/m"}, p.settle_drag_Ns_m);
-  {
-    const auto start = in("start");
-    start(ParamField{"active", ""}, p.start.active);
-    start(ParamField{"omega1_rad_s", "rad/s"}, p.start.omega1_rad_s);
-    start(ParamField{"omega2_rad_s", "rad/s"}, p.start.omega2_rad_s);
-    start(ParamField{"spinup_s", "s"}, p.start.spinup_s);
-    start(ParamField{"hold_s", "s"}, p.start.hold_s);
-  }
+  const auto start = in("start");
+  start(ParamField{"active", ""}, p.start.active);
+  start(ParamField{"omega1_rad_s", "rad/s"}, p.start.omega1_rad_s);
+  start(ParamField{"omega2_rad_s", "rad/s"}, p.start.omega2_rad_s);
+  start(ParamField{"spinup_s", "s"}, p.start.spinup_s);
+  start(ParamField{"hold_s", "s"}, p.start.hold_s);
 }
 
 // The same for RunOptions; max_steps is a cap (it ends a run, it does not
