@@ -157,12 +157,22 @@ void follow_pairs(const Prepared& p, const std::vector<std::size_t>& nn, LleResu
 }  // namespace
 
 // docs/analysis.md#rosenstein
-LleResult lle_rosenstein(const std::vector<double>& x, const LleOptions& opt) {
-  const Prepared p = prepare(x, opt, "lle");
+namespace {
+
+// A result that carries the embedding's window, horizon and size.
+LleResult result_of(const Prepared& p) {
   LleResult r;
   r.theiler = p.theiler;
   r.k_max = p.k_max;
   r.points = p.e.n;
+  return r;
+}
+
+}  // namespace
+
+LleResult lle_rosenstein(const std::vector<double>& x, const LleOptions& opt) {
+  const Prepared p = prepare(x, opt, "lle");
+  LleResult r = result_of(p);
   const NeighbourIndex index(p.e, p.n_ref);
   std::vector<std::size_t> nn(p.n_ref, std::numeric_limits<std::size_t>::max());
   std::size_t found = 0;
@@ -182,10 +192,7 @@ LleResult lle_rosenstein(const std::vector<double>& x, const LleOptions& opt) {
 
 LleResult lle_rosenstein_naive(const std::vector<double>& x, const LleOptions& opt) {
   const Prepared p = prepare(x, opt, "lle");
-  LleResult r;
-  r.theiler = p.theiler;
-  r.k_max = p.k_max;
-  r.points = p.e.n;
+  LleResult r = result_of(p);
   std::vector<std::size_t> nn(p.n_ref, std::numeric_limits<std::size_t>::max());
   for (std::size_t i = 0; i < p.n_ref; ++i) {
     double best = std::numeric_limits<double>::max();
@@ -206,10 +213,7 @@ LleResult lle_rosenstein_naive(const std::vector<double>& x, const LleOptions& o
 // docs/analysis.md#kantz: S(k) = < ln( mean_{j in U_i} ||y_{i+k} - y_{j+k}|| ) >_i
 LleResult lle_kantz(const std::vector<double>& x, const LleOptions& opt) {
   const Prepared p = prepare(x, opt, "lle-kantz");
-  LleResult r;
-  r.theiler = p.theiler;
-  r.k_max = p.k_max;
-  r.points = p.e.n;
+  LleResult r = result_of(p);
   const NeighbourIndex index(p.e, p.n_ref);
   const std::size_t n_refs = std::min<std::size_t>(p.n_ref, static_cast<std::size_t>(std::max(10, opt.max_refs)));
   const double stride = static_cast<double>(p.n_ref) / static_cast<double>(n_refs);
