@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
 
 #include "cvtplant/analysis/errors.hpp"
@@ -65,22 +66,17 @@ double get(const Params& p, const char* k) { return p.at(k); }
 
 Lorenz make_lorenz(const Params& p) {
   Lorenz s;
-  s.sigma = get(p, "sigma");
-  s.rho = get(p, "rho");
-  s.beta = get(p, "beta");
+  std::tie(s.sigma, s.rho, s.beta) = std::make_tuple(get(p, "sigma"), get(p, "rho"), get(p, "beta"));
   return s;
 }
 Rossler make_rossler(const Params& p) {
   Rossler s;
-  s.a = get(p, "a");
-  s.b = get(p, "b");
-  s.c = get(p, "c");
+  std::tie(s.a, s.b, s.c) = std::make_tuple(get(p, "a"), get(p, "b"), get(p, "c"));
   return s;
 }
 Henon make_henon(const Params& p) {
   Henon s;
-  s.a = get(p, "a");
-  s.b = get(p, "b");
+  std::tie(s.a, s.b) = std::make_tuple(get(p, "a"), get(p, "b"));
   return s;
 }
 Logistic make_logistic(const Params& p) {

@@ -1,6 +1,8 @@
 // Largest exponent from data (docs/analysis.md#lle).
 #include <doctest/doctest.h>
 
+#include <tuple>
+
 #include "cvtplant/analysis/lle.hpp"
 #include "signals.hpp"
 
@@ -11,9 +13,7 @@ namespace {
 // An embedding of dimension m, delay tau, samples dt apart.
 LleOptions embedding(int m, int tau, double dt = 1.0) {
   LleOptions o;
-  o.m = m;
-  o.tau = tau;
-  o.dt = dt;
+  std::tie(o.m, o.tau, o.dt) = std::make_tuple(m, tau, dt);
   return o;
 }
 

@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <tuple>
 
 #include "cvtplant/analysis/lyapunov.hpp"
 #include "cvtplant/analysis/systems.hpp"
@@ -14,10 +15,7 @@ namespace {
 // The run of a spectrum: step (flows), transient, warm-up, accumulation.
 BenettinOptions run(double dt, double t_transient, double t_warmup, double t_end) {
   BenettinOptions o;
-  o.dt = dt;
-  o.t_transient = t_transient;
-  o.t_warmup = t_warmup;
-  o.t_end = t_end;
+  std::tie(o.dt, o.t_transient, o.t_warmup, o.t_end) = std::make_tuple(dt, t_transient, t_warmup, t_end);
   return o;
 }
 

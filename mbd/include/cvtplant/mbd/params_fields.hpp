@@ -23,12 +23,6 @@ constexpr const auto& value_names(Method) { return kMethodNames; }
 // TimeProfile.
 template <class P, class V>
 void visit_mbd_params(P& p, V&& v) {
-  const auto in = [&v](const char* group) {
-    return [&v, group](ParamField f, auto& x) {
-      f.group = group;
-      v(f, x);
-    };
-  };
   v(ParamField{"beta0_rad", "rad"}, p.beta0_rad);
   v(ParamField{"center_distance_m", "m"}, p.center_distance_m);
   v(ParamField{"link_mass_kg", "kg"}, p.link_mass_kg);
@@ -44,19 +38,20 @@ void visit_mbd_params(P& p, V&& v) {
   v(ParamField{"links", "1"}, p.links);
   v(ParamField{"link_inertia_kgm2", "kg.m^2"}, p.link_inertia_kgm2);
   v(ParamField{"sheave_deformation", ""}, p.sheave_deformation);
-  visit_friction_fields(p.friction, in("friction"));
+  visit_friction_fields(p.friction, [&v](ParamField f, auto& x) {
+    f.group = "friction";
+    v(f, x);
+  });
   v(ParamField{"tau_in_Nm", "N.m"}, p.tau_in_Nm);
   v(ParamField{"tau_load_Nm", "N.m"}, p.tau_load_Nm);
-  const auto road = in("road");
-  road(ParamField{"T0_Nm", "N.m"}, p.road.T0_Nm);
-  road(ParamField{"cv_Nms_rad", "N.m.s/rad"}, p.road.cv_Nms_rad);
-  road(ParamField{"ca_Nms2_rad2", "N.m.s^2/rad^2"}, p.road.ca_Nms2_rad2);
-  road(ParamField{"w_eps_rad_s", "rad/s"}, p.road.w_eps_rad_s);
-  const auto hold1 = in("hold1"), hold2 = in("hold2");
-  hold1(ParamField{"active", ""}, p.hold1.active);
-  hold1(ParamField{"omega_rad_s", "rad/s"}, p.hold1.omega_rad_s);
-  hold2(ParamField{"active", ""}, p.hold2.active);
-  hold2(ParamField{"omega_rad_s", "rad/s"}, p.hold2.omega_rad_s);
+  v(ParamField{"T0_Nm", "N.m", ParamFit::none, 1.0, "road"}, p.road.T0_Nm);
+  v(ParamField{"cv_Nms_rad", "N.m.s/rad", ParamFit::none, 1.0, "road"}, p.road.cv_Nms_rad);
+  v(ParamField{"ca_Nms2_rad2", "N.m.s^2/rad^2", ParamFit::none, 1.0, "road"}, p.road.ca_Nms2_rad2);
+  v(ParamField{"w_eps_rad_s", "rad/s", ParamFit::none, 1.0, "road"}, p.road.w_eps_rad_s);
+  v(ParamField{"active", "", ParamFit::none, 1.0, "hold1"}, p.hold1.active);
+  v(ParamField{"omega_rad_s", "rad/s", ParamFit::none, 1.0, "hold1"}, p.hold1.omega_rad_s);
+  v(ParamField{"active", "", ParamFit::none, 1.0, "hold2"}, p.hold2.active);
+  v(ParamField{"omega_rad_s", "rad/s", ParamFit::none, 1.0, "hold2"}, p.hold2.omega_rad_s);
   v(ParamField{"sheaves", ""}, p.sheaves);
   v(ParamField{"clamp1_N", "N"}, p.clamp1_N);
   v(ParamField{"clamp2_N", "N"}, p.clamp2_N);
@@ -66,12 +61,11 @@ void visit_mbd_params(P& p, V&& v) {
   v(ParamField{"sheave_stop_N_m", "N/m"}, p.sheave_stop_N_m);
   v(ParamField{"settle_s", "s"}, p.settle_s);
   v(ParamField{"settle_drag_Ns_m", "N.s/m"}, p.settle_drag_Ns_m);
-  const auto start = in("start");
-  start(ParamField{"active", ""}, p.start.active);
-  start(ParamField{"omega1_rad_s", "rad/s"}, p.start.omega1_rad_s);
-  start(ParamField{"omega2_rad_s", "rad/s"}, p.start.omega2_rad_s);
-  start(ParamField{"spinup_s", "s"}, p.start.spinup_s);
-  start(ParamField{"hold_s", "s"}, p.start.hold_s);
+  v(ParamField{"active", "", ParamFit::none, 1.0, "start"}, p.start.active);
+  v(ParamField{"omega1_rad_s", "rad/s", ParamFit::none, 1.0, "start"}, p.start.omega1_rad_s);
+  v(ParamField{"omega2_rad_s", "rad/s", ParamFit::none, 1.0, "start"}, p.start.omega2_rad_s);
+  v(ParamField{"spinup_s", "s", ParamFit::none, 1.0, "start"}, p.start.spinup_s);
+  v(ParamField{"hold_s", "s", ParamFit::none, 1.0, "start"}, p.start.hold_s);
 }
 
 // The same for RunOptions; max_steps is a cap (it ends a run, it does not
