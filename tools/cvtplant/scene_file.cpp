@@ -14,7 +14,7 @@
 #include "io_util.hpp"
 #include "options.hpp"
 #include "cvtplant/friction/friction_fields.hpp"
-#include "cvtplant/plant/rom_param_fields.hpp"
+#include "cvtplant/scene/scene_params.hpp"
 #include "cvtplant/scene/builtin_scenes.hpp"
 
 namespace cvtcli {
@@ -186,56 +186,63 @@ class Reader {
     return p;
   }
 
-  // The [friction] table: a preset, then any field of the friction list
-  // (law and sign by name).
-  void friction(const toml::table& t, cvt::FrictionParams<double>& f) {
+  // The key of a row of scene/scene_params.hpp (the one list of the scene's
+  // parameter keys) in table `table` ("params", "friction", "initial"), or
+  // "" for another table's row. beta0 is the one key in other units: the
+  // file takes degrees.
+  static std::string row_key(const cvt::SceneParamInfo& r, const std::string& table) {
+    const std::string name = r.name;
+    if (name.compare(0, table.size() + 1, table + ".") != 0) return "";
+    const std::string key = name.substr(table.size() + 1);
+    return key == "beta0_rad" ? "beta0_deg" : key;
+  }
+
+  // Every row of `table` that t sets, into s; `also`: the table's keys that
+  // are not rows, read by the caller before the rows.
+  void rows(const toml::table& t, const std::string& table, cvt::Scene& s, std::set<std::string> also = {}) {
+    const std::string pre = table + ".";
+    for (const cvt::SceneParamInfo& r : cvt::kSceneParams)
+      if (const std::string key = row_key(r, table); !key.empty()) also.insert(key);
+    check_known(t, pre, also);
+    if (table == "friction") friction_choices(t, s.params.friction);
+    for (const cvt::SceneParamInfo& r : cvt::kSceneParams) {
+      const std::string key = row_key(r, table);
+      if (key.empty()) continue;
+      if (r.kind == cvt::SceneParamKind::flag)
+        r.set(s, boolean(t, pre, key.c_str(), r.get(s) != 0.0) ? 1.0 : 0.0);
+      else if (key == "beta0_deg")
+        r.set(s, number(t, pre, key.c_str(), r.get(s) / cvt::kDegToRad) * cvt::kDegToRad);
+      else
+        r.set(s, number(t, pre, key.c_str(), r.get(s)));
+    }
+  }
+
+  // [friction]'s keys that are not numbers: a preset (applied first), the
+  // law and the sign function, by name.
+  void friction_choices(const toml::table& t, cvt::FrictionParams<double>& f) {
     const std::string pre = "friction.";
-    std::set<std::string> known = {"preset"};
-    cvt::visit_friction_fields(f, [&](const cvt::ParamField& field, auto&) { known.insert(field.name); });
-    check_known(t, pre, known);
     if (const toml::node* n = t.get("preset")) {
       const std::string preset = text(t, pre, "preset", "");
       if (!preset.empty() && !named_value(cvt::kFrictionPresetNames, preset, f))
         fail(n->source(), pre + "preset", "unknown preset " + quoted(preset) + " (" + names_of(cvt::kFrictionPresetNames) + ")");
     }
-    cvt::visit_friction_fields(f, [&](const cvt::ParamField& field, auto& x) {
-      using X = std::remove_reference_t<decltype(x)>;
-      if constexpr (std::is_enum_v<X>) {
-        const toml::node* n = t.get(field.name);
-        if (n == nullptr) return;
-        const std::string name = text(t, pre, field.name, "");
-        if (!name.empty() && !named_value(value_names(x), name, x))
-          fail(n->source(), pre + field.name,
-               "unknown " + std::string(field.name) + " " + quoted(name) + " (" + names_of(value_names(x)) + ")");
-      } else {
-        x = number(t, pre, field.name, x);
-      }
-    });
+    choice(t, "law", f.law);
+    choice(t, "sign", f.sign);
   }
-
-  // The [params] table: every RomParams number and flag of the parameter
-  // list (cvt::visit_rom_params), each in the unit of its key.
-  void params(const toml::table& t, cvt::RomParams& p) {
-    const std::string pre = "params.";
-    std::set<std::string> known;
-    cvt::visit_rom_params(p, [&](const cvt::ParamField& f, auto&) {
-      if (f.group[0] == '\0') known.insert(f.name);
-    });
-    check_known(t, pre, known);
-    cvt::visit_rom_params(p, [&](const cvt::ParamField& f, auto& x) {
-      using X = std::remove_reference_t<decltype(x)>;
-      if (f.group[0] != '\0') return;  // [friction]
-      if constexpr (std::is_same_v<X, bool>)
-        x = boolean(t, pre, f.name, x);
-      else if constexpr (std::is_same_v<X, double>)
-        x = number(t, pre, f.name, x / f.to_si) * f.to_si;
-    });
+  template <class E>
+  void choice(const toml::table& t, const char* key, E& value) {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) return;
+    const std::string name = text(t, "friction.", key, "");
+    if (!name.empty() && !named_value(value_names(value), name, value))
+      fail(n->source(), std::string("friction.") + key,
+           "unknown " + std::string(key) + " " + quoted(name) + " (" + names_of(value_names(value)) + ")");
   }
 
   // A parameter file (`cvtplant calibrate --out`): [params] only, applied to s.
   void read_params_only(cvt::Scene& s) {
     check_known(root_, "", {"params"});
-    if (const toml::table* t = table(root_, "", "params")) params(*t, s.params);
+    if (const toml::table* t = table(root_, "", "params")) rows(*t, "params", s);
     const cvt::SceneIssue issue = cvt::validate_scene(s);
     if (!issue.ok) fail_field(field_key(issue.field), issue.message);
   }
@@ -273,23 +280,9 @@ class Reader {
     else if (scalar == "fixed") s.scalar = cvt::ScalarKind::q16_16;
     else fail_field("scalar", "unknown scalar " + quoted(scalar) + " (double, float, fixed)");
 
-    cvt::RomParams& p = s.params;
-    if (const toml::table* t = table(root_, "", "params")) params(*t, p);
-    if (const toml::table* t = table(root_, "", "friction")) friction(*t, p.friction);
-    if (const toml::table* t = table(root_, "", "initial")) {
-      const std::string pre = "initial.";
-      check_known(*t, pre, {"omega1_rad_s", "omega2_rad_s", "x1_m", "xd1_m_s", "x2_m", "xd2_m_s", "phase_rad",
-                            "radius_offset_m"});
-      cvt::RomInitial& x = s.initial;
-      x.omega1_rad_s = number(*t, pre, "omega1_rad_s", x.omega1_rad_s);
-      x.omega2_rad_s = number(*t, pre, "omega2_rad_s", x.omega2_rad_s);
-      x.x1_m = number(*t, pre, "x1_m", x.x1_m);
-      x.xd1_m_s = number(*t, pre, "xd1_m_s", x.xd1_m_s);
-      x.x2_m = number(*t, pre, "x2_m", x.x2_m);
-      x.xd2_m_s = number(*t, pre, "xd2_m_s", x.xd2_m_s);
-      x.phase_rad = number(*t, pre, "phase_rad", x.phase_rad);
-      x.radius_offset_m = number(*t, pre, "radius_offset_m", x.radius_offset_m);
-    }
+    if (const toml::table* t = table(root_, "", "params")) rows(*t, "params", s);
+    if (const toml::table* t = table(root_, "", "friction")) rows(*t, "friction", s, {"preset", "law", "sign"});
+    if (const toml::table* t = table(root_, "", "initial")) rows(*t, "initial", s);
     if (const toml::table* t = table(root_, "", "inputs")) {
       check_known(*t, "inputs.", {"tau_in", "tau_load", "clamp"});
       s.tau_in = profile(*t, "tau_in", s.tau_in);
