@@ -21,6 +21,7 @@
 #include "cvtplant/port/socketcan_transport.hpp"
 #include "cvtplant/sil/harness/child_process.hpp"
 #include "cvtplant/sil/harness/example_controller.hpp"
+#include "cvtplant/sil/harness/extensions.hpp"
 #include "cvtplant/sil/harness/external_controller.hpp"
 #include "cvtplant/sil/harness/report.hpp"
 #include "cvtplant/sil/harness/runner.hpp"
@@ -33,7 +34,7 @@ const char kUsage[] =
     "usage: cvtplant-sil run   [--iface NAME|--loopback] [--scenario NAME[,NAME...]|all] [--out DIR] [--junit FILE]\n"
     "                          [--mode lockstep|realtime|both] [--t-end S] [--reply-timeout-ms T]\n"
     "                          [--controller example|external] [--controller-cmd CMD] [--controller-timeout-ms T]\n"
-    "                          [--plant-cmd CMD] [--safety X] [--loopback-frame-cost-us US]\n"
+    "                          [--plant NAME] [--plant-cmd CMD] [--safety X] [--loopback-frame-cost-us US]\n"
     "       cvtplant-sil bench [--iface NAME|--loopback] [--steps N] [--with-controller] [--reply-timeout-ms T]\n"
     "Plays the SIL scenarios against a plant on a CAN bus and a controller under test,\n"
     "judges their criteria and writes CSV traces and a JUnit report (docs/sil.md).\n"
@@ -62,6 +63,9 @@ const char kUsage[] =
     "                      --controller external\n"
     "  --controller-timeout-ms T  lock-step: how long to wait for the controller's commands of a\n"
     "                      period (default 1000; the first period of a run waits at least 10 s)\n"
+    "  --plant NAME        the plant the scenarios run against (docs/sil.md#plants), default rom:\n"
+    "                      with --loopback in this process; on an interface the plant's bridge\n"
+    "                      program must be on the bus (or started with --plant-cmd)\n"
     "  --plant-cmd CMD     start CMD (sh -c) as the plant, e.g. 'cvtplant-bridge --iface vcan0',\n"
     "                      wait until it answers (30 s at most) and stop it after the runs; its\n"
     "                      output into DIR/plant.log\n"
@@ -94,16 +98,31 @@ double number(const std::string& flag, const std::string& v, double lo, double h
 
 }  // namespace
 
+void print_usage() {
+  std::fputs(kUsage, stdout);
+  for (const Subcommand& c : subcommands()) std::fputs(c.usage.c_str(), stdout);
+  std::printf("Plants (--plant):\n");
+  for (const PlantKind& k : plant_kinds()) std::printf("  %-19s %s\n", k.name.c_str(), k.what.c_str());
+}
+
+std::string subcommand_names() {
+  std::string n = "run, bench";
+  for (const Subcommand& c : subcommands()) n += ", " + c.name;
+  return n;
+}
+
 int main(int argc, char** argv) {
-  if (argc < 2) bad_usage("missing subcommand run or bench");
+  if (argc < 2) bad_usage("missing subcommand (" + subcommand_names() + ")");
   const std::string cmd = argv[1];
   if (cmd == "-h" || cmd == "--help") {
-    std::fputs(kUsage, stdout);
+    print_usage();
     return 0;
   }
-  if (cmd != "run" && cmd != "bench") bad_usage("unknown subcommand '" + cmd + "'");
+  for (const Subcommand& c : subcommands())
+    if (cmd == c.name) return c.main(argc, argv);
+  if (cmd != "run" && cmd != "bench") bad_usage("unknown subcommand '" + cmd + "' (" + subcommand_names() + ")");
   std::string iface = "vcan0", scenario = "all", out_dir = ".", junit, mode = "lockstep", controller = "example";
-  std::string controller_cmd, plant_cmd;
+  std::string controller_cmd, plant_cmd, plant_name = "rom";
   long steps = 5000;
   bool with_controller = false, loopback = false, safety_given = false;
   double reply_timeout_ms = 0;  // 0: the default for the transport
@@ -113,7 +132,7 @@ int main(int argc, char** argv) {
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "-h" || a == "--help") {
-      std::fputs(kUsage, stdout);
+      print_usage();
       return 0;
     }
     if (a == "--with-controller" || a == "--loopback") {
@@ -123,7 +142,7 @@ int main(int argc, char** argv) {
     static const char* const kValueFlags[] = {
         "--iface", "--scenario", "--out", "--junit", "--safety", "--steps", "--reply-timeout-ms", "--mode",
         "--loopback-frame-cost-us", "--controller", "--controller-cmd", "--controller-timeout-ms", "--plant-cmd",
-        "--t-end"};
+        "--t-end", "--plant"};
     bool known = false;
     for (const char* k : kValueFlags) known = known || a == k;
     if (!known) bad_usage("unknown option '" + a + "'");
@@ -135,6 +154,11 @@ int main(int argc, char** argv) {
     else if (a == "--junit") junit = v;
     else if (a == "--controller-cmd") controller_cmd = v;
     else if (a == "--plant-cmd") plant_cmd = v;
+    else if (a == "--plant") {
+      plant_name = v;
+      if (find_plant_kind(v) == nullptr)
+        bad_usage("--plant: expected " + plant_kind_names() + " (this build's plants), got '" + v + "'");
+    }
     else if (a == "--loopback-frame-cost-us") frame_cost_ns = static_cast<std::int64_t>(number(a, v, 0, 100000) * 1e3 + 0.5);
     else if (a == "--mode") {
       mode = v;
@@ -213,7 +237,12 @@ int main(int argc, char** argv) {
         bad_usage("--mode realtime: runs ratio-sweep, kick-down or slip-recovery, not '" + std::string(s.name) + "'");
   if (frame_cost_ns > 0 && (!loopback || !realtime_runs))
     bad_usage("--loopback-frame-cost-us: needs --loopback and --mode realtime or both");
-  if (reply_timeout_ms == 0) reply_timeout_ms = loopback ? 20 : 1000;
+  const PlantKind& kind = *find_plant_kind(plant_name);
+  if (cmd == "bench" && plant_name != "rom") bad_usage("bench: measures the bus with the real-time plant (--plant rom)");
+  if (reply_timeout_ms == 0) reply_timeout_ms = loopback ? 20 : kind.bus_reply_timeout_ms;
+  PlantKindOptions kind_opt;
+  kind_opt.out_dir = out_dir;
+  kind_opt.frame_cost_ns = frame_cost_ns;
   // Traces are part of the result: a directory that cannot be made is an
   // error now, not a silently missing CSV later.
   std::error_code mkdir_error;
@@ -222,6 +251,17 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "cvtplant-sil: --out %s: %s\n", out_dir.c_str(), mkdir_error.message().c_str());
     return 1;
   }
+  // A plant that cannot keep time is not run in real time (docs/sil.md#reference-realtime).
+  if (realtime_runs && kind.realtime_refusal)
+    for (const Scenario& s : chosen) {
+      if (!s.ratio_target) continue;
+      const std::string why = kind.realtime_refusal(s, kind_opt);
+      if (!why.empty()) {
+        std::fprintf(stderr, "cvtplant-sil: --mode %s with --plant %s: %s\n", mode.c_str(), plant_name.c_str(),
+                     why.c_str());
+        return 2;
+      }
+    }
 
   // The nodes: the plant (in-process only with --loopback), the harness and
   // the controller port, each with its own transport: the example
@@ -233,7 +273,7 @@ int main(int argc, char** argv) {
   cvt::port::CanTransport* controller_bus = nullptr;
   if (loopback) {
     loop = std::make_unique<InProcessBus>();
-    plant = std::make_unique<LoopbackBridgePlant>(*loop, frame_cost_ns);
+    plant = kind.in_process(*loop, kind_opt);
     harness_bus = &loop->harness_node();
     controller_bus = &loop->controller_node();
   } else {
@@ -296,6 +336,7 @@ int main(int argc, char** argv) {
   const RealTimeBus rt_bus = plant->realtime();
   RunConfig cfg;
   cfg.out_dir = out_dir;
+  cfg.plant = plant.get();
   std::vector<ScenarioResult> results;
   bool all_pass = true;
   for (const Scenario& s : chosen) {

@@ -18,6 +18,9 @@ namespace cvt::sil::harness {
 
 struct RunConfig {
   std::string out_dir = ".";  // the CSV traces
+  // The plant under test, for what the bus cannot carry about a fault (its
+  // message, PlantUnderTest::fault_message); may be null.
+  const PlantUnderTest* plant = nullptr;
 };
 
 // `harness_faults` is the harness's own transport wrapper, which the fault
