@@ -20,6 +20,7 @@ INCLUDE_DIRS = {
     "analysis": ["analysis/include"],
     "mbd": ["mbd/include"],
     "validation": ["validation/include"],
+    "cosim": ["cosim/include"],
     "tools": ["tools/cvtplant"],
     # The template controller project: a downstream user of the installed package.
     "examples": ["examples/controller-c"],
@@ -34,7 +35,11 @@ ALLOWED = {
     "analysis": ["lib"],
     "mbd": ["lib"],
     "validation": ["lib", "analysis", "mbd"],
-    "tools": ["lib", "port", "hil", "analysis", "mbd", "validation"],
+    # The reference behind the bridge and the closed-loop comparison: the
+    # bus (hil/, port/), the reference (mbd/) and the scene mapping
+    # (validation/). Host only; hil/ never includes it.
+    "cosim": ["lib", "port", "hil", "mbd", "validation"],
+    "tools": ["lib", "port", "hil", "analysis", "mbd", "validation", "cosim"],
     "examples": ["lib", "port", "hil"],
 }
 # What a module's own tests may include besides: hil's tests run the
@@ -47,13 +52,14 @@ SOURCE_DIRS = {
     "analysis": ["analysis/include", "analysis/src"],
     "mbd": ["mbd/include", "mbd/src"],
     "validation": ["validation/include", "validation/src"],
+    "cosim": ["cosim/include", "cosim/src"],
     "tools": ["tools/cvtplant"],
     "examples": ["examples"],
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 # The command-line parser belongs to the programs (tools/, hil/'s): a library
 # module that included it could only be driven through a subprocess.
-NO_CLI = ("lib", "port", "analysis", "mbd", "validation")
+NO_CLI = ("lib", "port", "analysis", "mbd", "validation", "cosim")
 CLI_INCLUDE = re.compile(r'^\s*#\s*include\s+<CLI/', re.M)
 
 

@@ -70,6 +70,7 @@ ScenarioResult run_lockstep(const Scenario& sc, HarnessNode& h, FaultInjector& h
       break;
     }
     ctl.after_step();
+    if (cfg.on_period) cfg.on_period(t + kPeriod_s);
     expect_us += kFramesPerPeriod * 1000;
     const cvt::can::PlantStatus& st = h.status();
     trace.push_back(sample_of(sc, capacity, st.sim_time_us * 1e-6, t, st,

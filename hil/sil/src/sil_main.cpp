@@ -189,45 +189,15 @@ int main(int argc, char** argv) {
 
   // The chosen scenarios, in the table's order; an external controller
   // cannot show the faults inside a controller (with all: left out).
-  std::vector<Scenario> chosen;
-  std::vector<std::string> names;
-  for (std::size_t p = 0; p <= scenario.size();) {
-    const std::size_t q = scenario.find(',', p);
-    names.push_back(scenario.substr(p, q == std::string::npos ? std::string::npos : q - p));
-    p = q == std::string::npos ? scenario.size() + 1 : q + 1;
-  }
   ExternalOptions ext_opt;
   ext_opt.answer_timeout_ns = static_cast<std::int64_t>(controller_timeout_ms * 1e6);
-  for (const std::string& n : names) {
-    bool found = false;
-    for (const Scenario& s : scenarios()) found = found || n == "all" || n == s.name;
-    if (!found || n.empty()) bad_usage("--scenario: expected " + scenario_names() + ", got '" + n + "'");
-  }
+  std::vector<Scenario> chosen;
   std::vector<std::string> left_out;
-  for (const Scenario& s : scenarios()) {
-    bool want = false;
-    for (const std::string& n : names) want = want || n == "all" || n == s.name;
-    if (!want) continue;
-    std::string why;
-    if (external && !ExternalController::accepts(s, why)) {
-      if (scenario == "all") {
-        left_out.push_back(s.name);
-        continue;
-      }
-      bad_usage("--controller external: " + why);
-    }
-    Scenario c = s;
-    if (t_end_s > 0 && t_end_s < c.t_end_s) {
-      if (t_end_s < c.min_t_end_s) {
-        char buf[200];
-        std::snprintf(buf, sizeof buf, "--t-end: %s needs at least %.1f s to judge its criteria, got %g", s.name,
-                      c.min_t_end_s, t_end_s);
-        bad_usage(buf);
-      }
-      c.t_end_s = t_end_s;
-    }
-    chosen.push_back(c);
-  }
+  const std::string selection_error = select_scenarios(
+      scenario, t_end_s, chosen,
+      [external](const Scenario& s, std::string& why) { return !external || ExternalController::accepts(s, why); },
+      &left_out, "--controller external: ");
+  if (!selection_error.empty()) bad_usage(selection_error);
   // Real time runs the ratio scenarios (docs/sil.md#ratio-realtime); the
   // fault scenarios need the harness's control of every step.
   const bool lockstep_runs = mode != "realtime", realtime_runs = mode != "lockstep";
