@@ -19,6 +19,7 @@ INCLUDE_DIRS = {
             "hil/sil/include", "hil/common"],
     "analysis": ["analysis/include"],
     "mbd": ["mbd/include"],
+    "fmu": ["fmu/include"],
     "validation": ["validation/include"],
     "cosim": ["cosim/include"],
     "tools": ["tools/cvtplant"],
@@ -34,12 +35,13 @@ ALLOWED = {
     "hil": ["lib", "port"],
     "analysis": ["lib"],
     "mbd": ["lib"],
+    "fmu": ["lib"],
     "validation": ["lib", "analysis", "mbd"],
     # The reference behind the bridge and the closed-loop comparison: the
     # bus (hil/, port/), the reference (mbd/) and the scene mapping
     # (validation/). Host only; hil/ never includes it.
     "cosim": ["lib", "port", "hil", "mbd", "validation"],
-    "tools": ["lib", "port", "hil", "analysis", "mbd", "validation", "cosim"],
+    "tools": ["lib", "port", "hil", "analysis", "mbd", "validation", "fmu", "cosim"],
     "examples": ["lib", "port", "hil"],
 }
 # What a module's own tests may include besides: hil's tests run the
@@ -51,6 +53,7 @@ SOURCE_DIRS = {
     "hil": ["hil"],
     "analysis": ["analysis/include", "analysis/src"],
     "mbd": ["mbd/include", "mbd/src"],
+    "fmu": ["fmu/include", "fmu/src"],
     "validation": ["validation/include", "validation/src"],
     "cosim": ["cosim/include", "cosim/src"],
     "tools": ["tools/cvtplant"],
@@ -59,7 +62,7 @@ SOURCE_DIRS = {
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 # The command-line parser belongs to the programs (tools/, hil/'s): a library
 # module that included it could only be driven through a subprocess.
-NO_CLI = ("lib", "port", "analysis", "mbd", "validation", "cosim")
+NO_CLI = ("lib", "port", "analysis", "mbd", "validation", "fmu", "cosim")
 CLI_INCLUDE = re.compile(r'^\s*#\s*include\s+<CLI/', re.M)
 
 
