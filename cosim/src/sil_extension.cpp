@@ -45,8 +45,31 @@ double number(const std::string& flag, const std::string& v, double lo, double h
   return d;
 }
 
+// One NAME=VALUE of the reference's settings (the flags of
+// cvtplant-reference-bridge without their dashes): "" or why not.
+std::string apply_option(const std::string& opt, cvt::cosim::ReferenceOptions& ro) {
+  const std::size_t eq = opt.find('=');
+  const std::string name = opt.substr(0, eq), v = eq == std::string::npos ? "" : opt.substr(eq + 1);
+  auto num = [&v](double lo, double hi, double& out) {
+    char* end = nullptr;
+    errno = 0;
+    out = std::strtod(v.c_str(), &end);
+    return end != v.c_str() && *end == '\0' && errno == 0 && out >= lo && out <= hi;
+  };
+  double d = 0;
+  if (name == "rtol" && num(1e-12, 1e-2, d)) ro.stepper.rtol = d;
+  else if (name == "ledger-tol" && num(1e-15, 1.0, d)) ro.stepper.ledger_tol = d;
+  else if (name == "max-steps-per-frame" && num(1, 1e9, d)) ro.stepper.max_steps_per_frame = static_cast<long long>(d);
+  else if (name == "rtol" || name == "ledger-tol" || name == "max-steps-per-frame")
+    return name + ": a number in its range (see --help), got '" + v + "'";
+  else
+    return "the reference takes rtol=R, ledger-tol=X, max-steps-per-frame=N, got '" + opt + "'";
+  return "";
+}
+
 cvt::cosim::ReferenceOptions reference_options(const h::PlantKindOptions& o) {
   cvt::cosim::ReferenceOptions ro;
+  for (const std::string& opt : o.options) apply_option(opt, ro);  // checked when parsed
   ro.release_cache_dir = o.out_dir + "/reference-cache";
   std::error_code ec;
   std::filesystem::create_directories(ro.release_cache_dir, ec);
@@ -70,7 +93,14 @@ cvt::cosim::ReferenceOptions reference_options(const h::PlantKindOptions& o) {
       if (!p.load(*cvt::sil::builtin_scene_for(s.scene))) return p.load_refusal();
       p.reset();
       return p.keeps_time() ? "" : p.realtime_refusal();
-    }}), true);
+    },
+    [](const std::string& opt) {
+      cvt::cosim::ReferenceOptions ro;
+      return apply_option(opt, ro);
+    },
+    "                      --plant-option rtol=R (BDF tolerance, default 5e-7), ledger-tol=X (relative ledger\n"
+    "                      residual that faults it, default 1e-6), max-steps-per-frame=N (default 200000)\n"}),
+                                              true);
 
 const char kCompareUsage[] =
     "       cvtplant-sil compare [--scenario NAME[,NAME...]|all] [--out DIR] [--t-end S] [--rtol R]\n"

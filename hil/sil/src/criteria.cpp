@@ -267,6 +267,17 @@ void lockstep_checks(const Scenario& sc, const std::vector<Sample>& trace, const
   }
 }
 
+void partial_not_judged(const Scenario& sc, std::vector<Check>& checks) {
+  if (!(sc.t_end_s < sc.min_t_end_s - 1e-9)) return;
+  for (Check& c : checks)
+    if (c.judged && !partial_criterion(c.name)) {
+      c.judged = false;
+      c.detail = fmt("not judged, the run was cut at %.2f s (the scenario needs %.1f s): ", sc.t_end_s,
+                     sc.min_t_end_s) +
+                 c.detail;
+    }
+}
+
 void not_judged_from(std::vector<Check>& c, std::size_t from) {
   for (std::size_t i = from; i < c.size(); ++i) {
     c[i].judged = false;

@@ -13,7 +13,7 @@ std::vector<PlantKind>& kinds() {
       [](InProcessBus& bus, const PlantKindOptions& o) -> std::unique_ptr<PlantUnderTest> {
         return std::make_unique<LoopbackBridgePlant>(bus, o.frame_cost_ns);
       },
-      "cvtplant-bridge", 1000, {}}};
+      "cvtplant-bridge", 1000, {}, {}, ""}};
   return k;
 }
 

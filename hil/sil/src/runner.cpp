@@ -110,6 +110,7 @@ ScenarioResult run_lockstep(const Scenario& sc, HarnessNode& h, FaultInjector& h
   res.checks.insert(res.checks.end(), missing.begin(), missing.end());
   lockstep_checks(sc, trace, n, res.checks);
   ctl.add_checks(sc, res.checks);
+  partial_not_judged(sc, res.checks);
   res.trace = std::move(trace);
   return res;
 }
@@ -197,6 +198,7 @@ ScenarioResult run_realtime(const Scenario& sc, HarnessNode& h, ControllerUnderT
   c.push_back({"no_cmd_timeout", !timeout_seen && timeouts == 0,
                timeout_seen ? fmt("fault_cmd_timeout raised, PlantDiag.cmd_timeouts grew by %.0f", timeouts) : "none"});
   if (!kept_time) not_judged_from(c, full_from);
+  partial_not_judged(sc, c);
   res.trace = std::move(trace);
   return res;
 }

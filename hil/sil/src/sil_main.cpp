@@ -34,7 +34,8 @@ const char kUsage[] =
     "usage: cvtplant-sil run   [--iface NAME|--loopback] [--scenario NAME[,NAME...]|all] [--out DIR] [--junit FILE]\n"
     "                          [--mode lockstep|realtime|both] [--t-end S] [--reply-timeout-ms T]\n"
     "                          [--controller example|external] [--controller-cmd CMD] [--controller-timeout-ms T]\n"
-    "                          [--plant NAME] [--plant-cmd CMD] [--safety X] [--loopback-frame-cost-us US]\n"
+    "                          [--plant NAME] [--plant-option NAME=VALUE]... [--plant-cmd CMD] [--safety X]\n"
+    "                          [--loopback-frame-cost-us US]\n"
     "       cvtplant-sil bench [--iface NAME|--loopback] [--steps N] [--with-controller] [--reply-timeout-ms T]\n"
     "Plays the SIL scenarios against a plant on a CAN bus and a controller under test,\n"
     "judges their criteria and writes CSV traces and a JUnit report (docs/sil.md).\n"
@@ -52,6 +53,8 @@ const char kUsage[] =
     "  --t-end S           cut every scenario at S s of simulated time (at least each scenario's\n"
     "                      shortest run that still judges every criterion; an end-stop criterion\n"
     "                      beyond the cut is reported as not judged)\n"
+    "  --allow-partial     --t-end may cut below that: the scenario's first seconds, judged on\n"
+    "                      the bus, slip, safety factor, watchdog and timeout only (the rest not judged)\n"
     "  --controller C      example (default): the example controller, run by the harness;\n"
     "                      external: a controller on the bus (docs/sil.md#external-lockstep): each\n"
     "                      period the harness sends HarnessDemand and waits for its CtrlCmd\n"
@@ -66,6 +69,7 @@ const char kUsage[] =
     "  --plant NAME        the plant the scenarios run against (docs/sil.md#plants), default rom:\n"
     "                      with --loopback in this process; on an interface the plant's bridge\n"
     "                      program must be on the bus (or started with --plant-cmd)\n"
+    "  --plant-option NAME=VALUE  a setting of the --plant (below), repeatable\n"
     "  --plant-cmd CMD     start CMD (sh -c) as the plant, e.g. 'cvtplant-bridge --iface vcan0',\n"
     "                      wait until it answers (30 s at most) and stop it after the runs; its\n"
     "                      output into DIR/plant.log\n"
@@ -102,7 +106,10 @@ void print_usage() {
   std::fputs(kUsage, stdout);
   for (const Subcommand& c : subcommands()) std::fputs(c.usage.c_str(), stdout);
   std::printf("Plants (--plant):\n");
-  for (const PlantKind& k : plant_kinds()) std::printf("  %-19s %s\n", k.name.c_str(), k.what.c_str());
+  for (const PlantKind& k : plant_kinds()) {
+    std::printf("  %-19s %s\n", k.name.c_str(), k.what.c_str());
+    std::fputs(k.options_usage.c_str(), stdout);
+  }
 }
 
 std::string subcommand_names() {
@@ -123,8 +130,9 @@ int main(int argc, char** argv) {
   if (cmd != "run" && cmd != "bench") bad_usage("unknown subcommand '" + cmd + "' (" + subcommand_names() + ")");
   std::string iface = "vcan0", scenario = "all", out_dir = ".", junit, mode = "lockstep", controller = "example";
   std::string controller_cmd, plant_cmd, plant_name = "rom";
+  std::vector<std::string> plant_options;
   long steps = 5000;
-  bool with_controller = false, loopback = false, safety_given = false;
+  bool with_controller = false, loopback = false, safety_given = false, allow_partial = false;
   double reply_timeout_ms = 0;  // 0: the default for the transport
   double t_end_s = 0, controller_timeout_ms = 1000;
   std::int64_t frame_cost_ns = 0;
@@ -135,14 +143,14 @@ int main(int argc, char** argv) {
       print_usage();
       return 0;
     }
-    if (a == "--with-controller" || a == "--loopback") {
-      (a == "--loopback" ? loopback : with_controller) = true;
+    if (a == "--with-controller" || a == "--loopback" || a == "--allow-partial") {
+      (a == "--loopback" ? loopback : a == "--allow-partial" ? allow_partial : with_controller) = true;
       continue;
     }
     static const char* const kValueFlags[] = {
         "--iface", "--scenario", "--out", "--junit", "--safety", "--steps", "--reply-timeout-ms", "--mode",
         "--loopback-frame-cost-us", "--controller", "--controller-cmd", "--controller-timeout-ms", "--plant-cmd",
-        "--t-end", "--plant"};
+        "--t-end", "--plant", "--plant-option"};
     bool known = false;
     for (const char* k : kValueFlags) known = known || a == k;
     if (!known) bad_usage("unknown option '" + a + "'");
@@ -154,6 +162,7 @@ int main(int argc, char** argv) {
     else if (a == "--junit") junit = v;
     else if (a == "--controller-cmd") controller_cmd = v;
     else if (a == "--plant-cmd") plant_cmd = v;
+    else if (a == "--plant-option") plant_options.push_back(v);
     else if (a == "--plant") {
       plant_name = v;
       if (find_plant_kind(v) == nullptr)
@@ -196,7 +205,7 @@ int main(int argc, char** argv) {
   const std::string selection_error = select_scenarios(
       scenario, t_end_s, chosen,
       [external](const Scenario& s, std::string& why) { return !external || ExternalController::accepts(s, why); },
-      &left_out, "--controller external: ");
+      &left_out, "--controller external: ", allow_partial);
   if (!selection_error.empty()) bad_usage(selection_error);
   // Real time runs the ratio scenarios (docs/sil.md#ratio-realtime); the
   // fault scenarios need the harness's control of every step.
@@ -213,6 +222,15 @@ int main(int argc, char** argv) {
   PlantKindOptions kind_opt;
   kind_opt.out_dir = out_dir;
   kind_opt.frame_cost_ns = frame_cost_ns;
+  if (!plant_options.empty() && !loopback)
+    bad_usage("--plant-option: sets the plant in this process (--loopback); a plant on a bus takes its options on "
+              "its own command line");
+  for (const std::string& po : plant_options) {
+    if (!kind.check_option) bad_usage("--plant-option: the plant " + plant_name + " has no options");
+    const std::string why = kind.check_option(po);
+    if (!why.empty()) bad_usage("--plant-option: " + why);
+  }
+  kind_opt.options = plant_options;
   // Traces are part of the result: a directory that cannot be made is an
   // error now, not a silently missing CSV later.
   std::error_code mkdir_error;

@@ -235,6 +235,9 @@ class BasicBridge {
   }
   std::int64_t sim_ns() const noexcept { return static_cast<std::int64_t>(plant_.frames()) * plant_.frame_ns(); }
   const Plant& plant() const noexcept { return plant_; }
+  // The plant itself, for what the bus does not carry (a host plant's
+  // settings and checks); stepping it behind the bridge's back breaks lock-step.
+  Plant& plant() noexcept { return plant_; }
   const RxCounts& rx() const noexcept { return rx_; }
   const TxCounts& tx() const noexcept { return tx_; }
   std::uint64_t cmd_timeouts() const noexcept { return cmd_timeouts_; }

@@ -143,4 +143,8 @@ inline constexpr double kMaxOverrunFraction = 0.01;
 // Marks the checks from `from` on as not judged: the plant did not keep time.
 void not_judged_from(std::vector<Check>& c, std::size_t from);
 
+// A run cut below its scenario's shortest judged run (--allow-partial):
+// what needs the rest of the scenario is reported, not judged.
+void partial_not_judged(const Scenario& sc, std::vector<Check>& c);
+
 }  // namespace cvt::sil::harness

@@ -20,6 +20,9 @@ namespace cvt::sil::harness {
 struct PlantKindOptions {
   std::string out_dir = ".";        // the run's outputs (a plant may keep a cache there)
   std::int64_t frame_cost_ns = 0;   // --loopback-frame-cost-us
+  // --plant-option NAME=VALUE, in order: the plant's own settings (its
+  // PlantKind::check_option has accepted each).
+  std::vector<std::string> options;
 };
 
 struct PlantKind {
@@ -35,6 +38,10 @@ struct PlantKind {
   // Real time: empty when the plant keeps time for the scenario, else why
   // not (the run is refused).
   std::function<std::string(const Scenario&, const PlantKindOptions&)> realtime_refusal;
+  // One --plant-option NAME=VALUE: "" when the plant takes it, else the
+  // usage error; empty: the plant has no options.
+  std::function<std::string(const std::string& option)> check_option;
+  std::string options_usage;  // its options for --help ("" for none)
 };
 
 // Registers a kind (at static initialisation: `static const bool r = (register_plant_kind({...}), true);`).

@@ -92,6 +92,7 @@ class LoopbackPlant : public PlantUnderTest {
     return bridge_->plant().faulted() ? bridge_->plant().fault_message() : "";
   }
   const BridgeT& bridge() const { return *bridge_; }
+  BridgeT& bridge() { return *bridge_; }
 
  private:
   InProcessBus& bus_;
