@@ -22,6 +22,7 @@ INCLUDE_DIRS = {
     "fmu": ["fmu/include"],
     "validation": ["validation/include"],
     "files": ["files/include"],
+    "cosim": ["cosim/include"],
     "tools": ["tools/cvtplant"],
     # The template controller project: a downstream user of the installed package.
     "examples": ["examples/controller-c"],
@@ -38,7 +39,11 @@ ALLOWED = {
     "fmu": ["lib"],
     "validation": ["lib", "analysis", "mbd", "files"],
     "files": [],
-    "tools": ["lib", "port", "hil", "analysis", "mbd", "validation", "fmu", "files"],
+    # The reference behind the bridge and the closed-loop comparison: the
+    # bus (hil/, port/), the reference (mbd/) and the scene mapping
+    # (validation/). Host only; hil/ never includes it.
+    "cosim": ["lib", "port", "hil", "mbd", "validation", "files"],
+    "tools": ["lib", "port", "hil", "analysis", "mbd", "validation", "fmu", "cosim", "files"],
     "examples": ["lib", "port", "hil"],
 }
 # What a module's own tests may include besides: hil's tests run the
@@ -53,13 +58,14 @@ SOURCE_DIRS = {
     "fmu": ["fmu/include", "fmu/src"],
     "validation": ["validation/include", "validation/src"],
     "files": ["files/include", "files/src"],
+    "cosim": ["cosim/include", "cosim/src"],
     "tools": ["tools/cvtplant"],
     "examples": ["examples"],
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 # The command-line parser belongs to the programs (tools/, hil/'s): a library
 # module that included it could only be driven through a subprocess.
-NO_CLI = ("lib", "port", "analysis", "mbd", "validation", "fmu", "files")
+NO_CLI = ("lib", "port", "analysis", "mbd", "validation", "fmu", "cosim", "files")
 CLI_INCLUDE = re.compile(r'^\s*#\s*include\s+<CLI/', re.M)
 
 
