@@ -40,6 +40,7 @@ struct Options {
 struct SceneOutput {
   val::SceneResult r;
   std::string png, csv;
+  const char* set = "seed";  // the reference's parameter set
 };
 
 bool holds_a_pulley(const cvt::Scene& s) { return s.params.hold_driver_speed || s.params.hold_driven_speed; }
@@ -85,6 +86,7 @@ nlohmann::json to_json(const SceneOutput& o) {
     return j;
   }
   j["status"] = "ok";
+  j["set"] = o.set;
   j["sheaves"] = r.clamped ? "clamped" : "fixed";
   j["t_end_s"] = r.t_end_s;
   j["compared_s"] = r.cmp.compared_s;
@@ -114,13 +116,16 @@ nlohmann::json to_json(const SceneOutput& o) {
   return j;
 }
 
+// A value one model lacks (NaN: no common sample) reads "n/a".
 std::string pct(double v) {
+  if (!std::isfinite(v)) return "n/a";
   char b[32];
   std::snprintf(b, sizeof b, "%.1f %%", 100.0 * v);
   return b;
 }
 
 std::string fmt(double v) {
+  if (!std::isfinite(v)) return "n/a";
   char b[32];
   std::snprintf(b, sizeof b, "%.4g", v);
   return b;
@@ -135,9 +140,10 @@ void print_text(const std::vector<SceneOutput>& results) {
       std::printf("## %s: not run (the reference cannot run %s)\n\n", r.name.c_str(), r.skipped.c_str());
       continue;
     }
-    std::printf("## %s (%g s; compared over 0-%g s; steady state: the last %g s of it; reference on %s sheaves, %s)\n\n",
-                r.name.c_str(), r.t_end_s, r.cmp.compared_s, r.cmp.window_s, r.clamped ? "clamped" : "fixed",
-                r.ref.from_cache ? "from the cache" : "run now");
+    std::printf(
+        "## %s (%g s; compared over 0-%g s; steady state: the last %g s of it; reference: %s set on %s sheaves, %s)\n\n",
+        r.name.c_str(), r.t_end_s, r.cmp.compared_s, r.cmp.window_s, o.set, r.clamped ? "clamped" : "fixed",
+        r.ref.from_cache ? "from the cache" : "run now");
     if (!r.ref.failure.empty()) std::printf("The comparison ends there: %s.\n\n", r.ref.failure.c_str());
     if (r.clamped)
       std::printf("Reference's movable sheaves at their end stops (a ratio limit) from: driver %s, driven %s.\n\n",
@@ -178,14 +184,16 @@ Action register_validate(CLI::App& app) {
       if (dir_opt->count() > 0 && !std::filesystem::is_directory(o.scene_dir, ec))
         throw UsageError{"--scene-dir: " + o.scene_dir + " is not a directory"};
       if (!(o.max_t_end_s > 0 && std::isfinite(o.max_t_end_s))) throw UsageError{"--max-t-end: must be > 0"};
-      const val::RunSettings settings = reference_settings(sub, o.ref);
+      const val::RunSettings common = reference_settings(sub, o.ref);
       const auto scenes = scenes_for(o.scene, o.scene_dir);
       // Every scene's length and the parameter file are checked before any work.
       std::vector<cvt::Scene> plant_scenes;
+      std::vector<val::RunSettings> settings;
       for (const auto& l : scenes) {
+        settings.push_back(settings_for(common, o.ref, *l));
         plant_scenes.push_back(l->scene);
         if (!o.params.empty()) apply_params_file(o.params, plant_scenes.back());
-        const double t_end = val::run_length_s(l->scene, settings);
+        const double t_end = val::run_length_s(l->scene, common);
         if (t_end > o.max_t_end_s)
           throw UsageError{"scene " + l->name + ": " + fmt(t_end) + " s exceeds --max-t-end " + fmt(o.max_t_end_s) +
                            " s (raise it or shorten with --t-end)"};
@@ -196,9 +204,10 @@ Action register_validate(CLI::App& app) {
         const auto& l = scenes[i];
         SceneOutput out;
         {
-          Progress progress("validate " + l->name + ": reference", val::run_length_s(l->scene, settings));
-          out.r = val::check_scene(l->name, l->scene, plant_scenes[i], settings,
+          Progress progress("validate " + l->name + ": reference", val::run_length_s(l->scene, common));
+          out.r = val::check_scene(l->name, l->scene, plant_scenes[i], settings[i],
                                    [&](double t) { progress.update(t); });
+          out.set = cvt::mbd::parameter_set_name(settings[i].set);
         }
         if (out.r.skipped.empty()) {
           out.csv = o.ref.out_dir + "/" + l->name + ".csv";
