@@ -16,10 +16,12 @@
 #include "progress.hpp"
 #include "registry.hpp"
 #include "scene_file.hpp"
+#include "validate_suite.hpp"
 #include "validation_options.hpp"
 #include "cvtplant/scene/builtin_scenes.hpp"
 #include "cvtplant/validation/report.hpp"
 #include "cvtplant/validation/scene_check.hpp"
+#include "cvtplant/validation/suite.hpp"
 
 namespace cvtcli {
 
@@ -35,6 +37,9 @@ struct Options {
   double max_t_end_s = 60;
   bool json = false;
   bool figures = true;
+  // --suite (docs/validation.md#suite): the scene is the plant's, default ratio-control.
+  std::string suite, uncertainty = "subset";
+  bool maps = true;
 };
 
 struct SceneOutput {
@@ -177,9 +182,38 @@ Action register_validate(CLI::App& app) {
                   "Run the plant with a parameter file's [params] (e.g. calibrate --out); the reference is unchanged");
   sub->add_flag("--json", opt->json, "Print the results as JSON");
   sub->add_flag("!--no-figures", opt->figures, "Skip the overlay PNGs");
+  sub->add_option("--suite", opt->suite,
+                  "Run a manoeuvre suite against the reference instead of scenes (docs/validation.md#suite): "
+                  "controller or ci; --scene then names the plant (default ratio-control), --set the reference's "
+                  "set (default production), --max-t-end caps the suite's simulated seconds of reference")
+      ->check(CLI::IsMember(val::suite_names()));
+  sub->add_option("--uncertainty", opt->uncertainty,
+                  "With --suite: the reference's uncertainty runs: none, subset (one run of each kind and one "
+                  "cell of each map) or all")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"none", "subset", "all"}));
+  sub->add_flag("!--no-maps", opt->maps, "With --suite: skip the maps (thrust ratio, shift rate, traction, onset)");
   return [opt, sub, dir_opt]() -> int {
     return guarded([&] {
       const Options& o = *opt;
+      if (!o.suite.empty()) {
+        if (sub->count("--t-end") > 0) throw UsageError{"--t-end: a suite's manoeuvres have their own lengths"};
+        if (dir_opt->count() > 0) throw UsageError{"--scene-dir: not with --suite (--scene names the plant)"};
+        if (sub->count("--sheaves") > 0) throw UsageError{"--sheaves: a suite runs clamped sheaves"};
+        SuiteCliOptions so;
+        so.ref = o.ref;
+        so.suite = o.suite;
+        if (sub->count("--scene") > 0) so.plant = o.scene;
+        so.params = o.params;
+        so.uncertainty = o.uncertainty;
+        so.max_sim_s = sub->count("--max-t-end") > 0 ? o.max_t_end_s : so.max_sim_s;
+        so.maps = o.maps;
+        so.figures = o.figures;
+        so.json = o.json;
+        return run_validate_suite(so);
+      }
+      if (sub->count("--uncertainty") > 0 || sub->count("--no-maps") > 0)
+        throw UsageError{"--uncertainty and --no-maps go with --suite"};
       std::error_code ec;
       if (dir_opt->count() > 0 && !std::filesystem::is_directory(o.scene_dir, ec))
         throw UsageError{"--scene-dir: " + o.scene_dir + " is not a directory"};

@@ -88,8 +88,8 @@ Manoeuvre tip_in(const char* name, double omega1, double ratio, double from_Nm, 
 }  // namespace
 
 double controller_clamp2_N(double torque_Nm, double ratio) {
-  const cvt::mbd::MbdParams p = cvt::mbd::production_set();
-  const cvt::mbd::ProductionEnvelope e = cvt::mbd::production_envelope();
+  static const cvt::mbd::MbdParams p = cvt::mbd::production_set();
+  static const cvt::mbd::ProductionEnvelope e = cvt::mbd::production_envelope();
   const double r1 = driver_radius_for_ratio(p.r1_m, p.r2_m, p.center_distance_m, ratio);
   return std::max(e.clamp_min_N, capacity_clamp_N(torque_Nm, r1, p.friction.mu0, p.beta0_rad, e.clamp_safety));
 }

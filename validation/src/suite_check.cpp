@@ -11,6 +11,8 @@ namespace cvt::validation {
 
 double Uncertainty::u_val() const { return std::sqrt(u_num() * u_num() + u_input * u_input); }
 
+double input_share(double spread) { return 0.5 * spread / std::sqrt(3.0); }
+
 std::vector<OpenChoice> open_choices(cvt::mbd::ParameterSet set) {
   if (set != cvt::mbd::ParameterSet::production) return {};
   return {{"friction.mu0", 0.08, 0.10,
@@ -83,16 +85,20 @@ std::vector<Variant> variants(const ReferenceConfig& base) {
   return v;
 }
 
-// Combines the changes of variants (in the order of variants()) into an
-// Uncertainty: entries 0, 1 the tolerance, then pairs of an open choice.
-Uncertainty combine(const std::vector<Variant>& vs, const std::vector<double>& d) {
+// The reference's uncertainty from its variants (in the order of
+// variants()): `diff(i, j)` is a goal's relative difference between the
+// runs of variants i and j (j = -1: the base run). Numerical: the change at
+// 10x and 100x the tolerance; input: for each open choice the spread
+// between its range's two ends, a uniform distribution over it (half the
+// spread / sqrt(3), docs/validation.md#uncertainty).
+template <class Diff>
+Uncertainty combine(const std::vector<Variant>& vs, const Diff& diff) {
   Uncertainty u;
-  u.u_num10 = d[0];
-  u.u_num100 = d[1];
+  u.u_num10 = diff(0, -1);
+  u.u_num100 = diff(1, -1);
   double s2 = 0;
   for (std::size_t i = 2; i + 1 < vs.size(); i += 2) {
-    // Half the spread between the range's ends, a uniform distribution.
-    const double share = 0.5 * d[i] / std::sqrt(3.0);
+    const double share = input_share(diff(static_cast<int>(i), static_cast<int>(i + 1)));
     u.inputs.emplace_back(vs[i].name, share);
     s2 += share * share;
   }
@@ -101,6 +107,31 @@ Uncertainty combine(const std::vector<Variant>& vs, const std::vector<double>& d
 }
 
 }  // namespace
+
+double suite_reference_s(const Suite& suite, const ReferenceConfig& c, const SuiteOptions& o) {
+  const auto length = [](const std::vector<Manoeuvre>& ms) {
+    double t = 0;
+    for (const auto& m : ms) t += m.t_end_s;
+    return t;
+  };
+  double runs_s = length(suite.fit) + length(suite.held_out), measured_s = 0;
+  for (const auto* part : {&suite.fit, &suite.held_out})
+    for (const auto& m : *part)
+      if (o.uncertainty == "all" ||
+          std::count(suite.uncertainty_runs.begin(), suite.uncertainty_runs.end(), m.name) != 0)
+        measured_s += m.t_end_s;
+  double total = runs_s;
+  if (o.maps) {
+    total += length(map_manoeuvres());
+    // The maps' uncertainty cells: a hold, an onset run and a shift-rate cell.
+    std::vector<Manoeuvre> cells = shift_cell_manoeuvres(100.0, 1.5);
+    cells.push_back(hold_manoeuvre(150.0, 1.5, 90.0, 0.3));
+    cells.push_back(onset_manoeuvre(120.0));
+    measured_s += length(cells);
+  }
+  if (o.uncertainty != "none") total += static_cast<double>(2 + 2 * open_choices(c.set).size()) * measured_s;
+  return total;
+}
 
 SuiteResult check_suite(const Suite& suite, const cvt::Scene& plant, const ReferenceConfig& c,
                         const std::string& cache_dir, const SuiteOptions& o,
@@ -111,7 +142,19 @@ SuiteResult check_suite(const Suite& suite, const cvt::Scene& plant, const Refer
   out.suite = suite;
   std::vector<Manoeuvre> all = suite.fit;
   all.insert(all.end(), suite.held_out.begin(), suite.held_out.end());
-  const std::vector<ReferenceRun> refs = reference_manoeuvres(all, c, cache_dir, on_progress);
+  // Progress: the simulated time of the reference runs made so far, over
+  // every call below.
+  double base_s = 0, last_s = 0;
+  const cvt::mbd::ProgressSink progress = [&](double t) {
+    last_s = t;
+    if (on_progress) on_progress(base_s + t);
+  };
+  const auto next_call = [&] {
+    base_s += last_s;
+    last_s = 0;
+  };
+  const std::vector<ReferenceRun> refs = reference_manoeuvres(all, c, cache_dir, progress);
+  next_call();
   for (std::size_t i = 0; i < all.size(); ++i) {
     ManoeuvreCheck k;
     k.m = all[i];
@@ -125,7 +168,8 @@ SuiteResult check_suite(const Suite& suite, const cvt::Scene& plant, const Refer
     out.runs.push_back(std::move(k));
   }
   if (o.maps) {
-    out.maps = make_maps(plant, c, cache_dir, on_progress);
+    out.maps = make_maps(plant, c, cache_dir, progress);
+    next_call();
     out.has_maps = true;
     out.reference_cpu_s += out.maps.reference_cpu_s;
     out.reference_runs += out.maps.reference_runs;
@@ -144,14 +188,16 @@ SuiteResult check_suite(const Suite& suite, const cvt::Scene& plant, const Refer
     for (const auto* k : measured) ms.push_back(k->m);
     std::vector<std::vector<ReferenceRun>> vr;
     for (const Variant& v : vs) {
-      vr.push_back(reference_manoeuvres(ms, v.c, cache_dir, on_progress));
+      vr.push_back(reference_manoeuvres(ms, v.c, cache_dir, progress));
+      next_call();
       for (const auto& r : vr.back()) out.reference_cpu_s += r.cpu_s;
     }
     for (std::size_t j = 0; j < measured.size(); ++j)
       for (const GoalQuantity& g : kRunGoals) {
-        std::vector<double> d;
-        for (std::size_t v = 0; v < vs.size(); ++v) d.push_back(change(vr[v][j].series, measured[j]->ref.series, g));
-        const Uncertainty u = combine(vs, d);
+        const auto& base = measured[j]->ref.series;
+        const Uncertainty u = combine(vs, [&](int a, int b) {
+          return change(vr[static_cast<std::size_t>(a)][j].series, b < 0 ? base : vr[static_cast<std::size_t>(b)][j].series, g);
+        });
         out.uncertainty.push_back({measured[j]->m.name, g.goal, u});
         const std::string key = measured[j]->m.kind + "|" + g.goal;
         if (by_goal_kind.find(key) == by_goal_kind.end()) {
@@ -166,24 +212,28 @@ SuiteResult check_suite(const Suite& suite, const cvt::Scene& plant, const Refer
       const Manoeuvre onset = onset_manoeuvre(120.0);
       std::vector<Manoeuvre> maps_ms{hold, onset};
       maps_ms.insert(maps_ms.end(), cell.begin(), cell.end());
-      const std::vector<ReferenceRun> base = reference_manoeuvres(maps_ms, c, cache_dir, on_progress);
+      const std::vector<ReferenceRun> base = reference_manoeuvres(maps_ms, c, cache_dir, progress);
+      next_call();
       const auto measures = [&](const std::vector<ReferenceRun>& r) {
         const std::vector<ReferenceRun> shift(r.begin() + 2, r.end());
         return std::vector<double>{reference_hold_clamp1_N(hold, r[0].series), onset_clamp2_N(r[1].series),
                                    shift_slope(cell, shift)};
       };
       const std::vector<double> m0 = measures(base);
-      std::vector<std::vector<double>> d(3);
+      std::vector<std::vector<double>> mv;  // each variant's measures
       for (const Variant& v : vs) {
-        const std::vector<ReferenceRun> r = reference_manoeuvres(maps_ms, v.c, cache_dir, on_progress);
+        const std::vector<ReferenceRun> r = reference_manoeuvres(maps_ms, v.c, cache_dir, progress);
+        next_call();
         for (const auto& x : r) out.reference_cpu_s += x.cpu_s;
-        const std::vector<double> m1 = measures(r);
-        for (int q = 0; q < 3; ++q) d[q].push_back(std::fabs(m1[q] / m0[q] - 1.0));
+        mv.push_back(measures(r));
       }
       const char* goals[] = {"thrust-ratio cell", "gross-slip onset clamping", "shift-rate slope"};
       const char* where[] = {"ratio 1.5, 90 N m", "120 N m", "100 rad/s, ratio 1.5"};
-      for (int q = 0; q < 3; ++q) {
-        const Uncertainty u = combine(vs, d[q]);
+      for (std::size_t q = 0; q < 3; ++q) {
+        const Uncertainty u = combine(vs, [&](int a, int b) {
+          const double x = mv[static_cast<std::size_t>(a)][q], y = b < 0 ? m0[q] : mv[static_cast<std::size_t>(b)][q];
+          return std::fabs(x - y) / std::fabs(m0[q]);
+        });
         out.uncertainty.push_back({where[q], goals[q], u});
         by_goal_kind[std::string("map|") + goals[q]] = u;
         from[std::string("map|") + goals[q]] = where[q];
@@ -215,51 +265,32 @@ SuiteResult check_suite(const Suite& suite, const cvt::Scene& plant, const Refer
       out.goals.push_back(r);
     }
   if (out.has_maps) {
+    const auto map_row = [&](const char* goal, const std::string& where, double error, double limit) {
+      GoalRow r;
+      r.goal = goal;
+      r.where = where;
+      r.error = error;
+      r.limit = limit;
+      const std::string key = std::string("map|") + goal;
+      if (by_goal_kind.count(key) != 0) {
+        r.has_u = true;
+        r.u = by_goal_kind[key];
+        r.u_from = from[key];
+      }
+      out.goals.push_back(r);
+    };
     char where[96];
     for (const auto& cell : out.maps.thrust) {
-      GoalRow r;
-      r.goal = "thrust-ratio cell";
       std::snprintf(where, sizeof where, "ratio %g, %g N m", cell.ratio, cell.torque_Nm);
-      r.where = where;
-      r.error = cell.error();
-      r.limit = GoalLimits::thrust;
-      const std::string key = "map|thrust-ratio cell";
-      if (by_goal_kind.count(key) != 0) {
-        r.has_u = true;
-        r.u = by_goal_kind[key];
-        r.u_from = from[key];
-      }
-      out.goals.push_back(r);
+      map_row("thrust-ratio cell", where, cell.error(), GoalLimits::thrust);
     }
     for (const auto& cell : out.maps.shift) {
-      GoalRow r;
-      r.goal = "shift-rate slope";
       std::snprintf(where, sizeof where, "%g rad/s, ratio %g", cell.omega1_rad_s, cell.ratio);
-      r.where = where;
-      r.error = cell.error();
-      r.limit = GoalLimits::shift;
-      const std::string key = "map|shift-rate slope";
-      if (by_goal_kind.count(key) != 0) {
-        r.has_u = true;
-        r.u = by_goal_kind[key];
-        r.u_from = from[key];
-      }
-      out.goals.push_back(r);
+      map_row("shift-rate slope", where, cell.error(), GoalLimits::shift);
     }
     for (const auto& p : out.maps.onset) {
-      GoalRow r;
-      r.goal = "gross-slip onset clamping";
       std::snprintf(where, sizeof where, "%g N m", p.torque_Nm);
-      r.where = where;
-      r.error = p.error();
-      r.limit = GoalLimits::onset;
-      const std::string key = "map|gross-slip onset clamping";
-      if (by_goal_kind.count(key) != 0) {
-        r.has_u = true;
-        r.u = by_goal_kind[key];
-        r.u_from = from[key];
-      }
-      out.goals.push_back(r);
+      map_row("gross-slip onset clamping", where, p.error(), GoalLimits::onset);
     }
   }
   return out;

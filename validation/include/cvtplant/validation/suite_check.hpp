@@ -3,7 +3,9 @@
 // manoeuvre's comparison, the maps cell by cell, the reference's own
 // uncertainty in the manner of ASME V&V 20 (docs/validation.md#uncertainty)
 // and the goals with the error beside it.
+#include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cvtplant/mbd/run.hpp"
@@ -26,8 +28,8 @@ struct ManoeuvreCheck {
 
 // What the reference's answer could be off by: numerical (the change when
 // its tolerance is tightened 10x and 100x), input (the spread over the
-// choices its sources leave open, each a uniform distribution over its
-// range: half the spread / sqrt(3)), combined u_val = sqrt(u_num^2 +
+// choices its sources leave open: the spread of the answer between each
+// range's two ends, a uniform distribution over it, input_share), combined u_val = sqrt(u_num^2 +
 // u_input^2), u_num the 100x change. In the error's units (relative).
 struct Uncertainty {
   double u_num10 = 0, u_num100 = 0, u_input = 0;
@@ -35,6 +37,10 @@ struct Uncertainty {
   double u_num() const { return u_num100; }
   double u_val() const;
 };
+
+// An open choice's share of the input uncertainty: a uniform distribution
+// over a range whose two ends differ by `spread`, half-width / sqrt(3).
+double input_share(double spread);
 
 // One open choice of the reference's inputs: a field (visit_mbd_params'
 // name) and the range its sources leave.
@@ -93,6 +99,11 @@ struct SuiteResult {
 SuiteResult check_suite(const Suite& suite, const cvt::Scene& plant, const ReferenceConfig& c,
                         const std::string& cache_dir, const SuiteOptions& o,
                         const cvt::mbd::ProgressSink& on_progress = {});
+
+// The simulated seconds of reference the suite asks for (its runs, the
+// maps' and the uncertainty runs'), cached or not: a progress bar's total
+// and the size a caller caps.
+double suite_reference_s(const Suite& suite, const ReferenceConfig& c, const SuiteOptions& o);
 
 // The goals' limits: ratio 3 % RMS, pulley speeds 2 % RMS, mean axial forces
 // 5 %, thrust-ratio map 5 % in every cell, shift rate 10 %, clamping at
