@@ -32,6 +32,14 @@ std::string pct(double v) {
   return b;
 }
 
+// An uncertainty: small, so two significant digits.
+std::string upct(double v) {
+  if (!std::isfinite(v)) return "n/a";
+  char b[32];
+  std::snprintf(b, sizeof b, "%.2g %%", 100.0 * v);
+  return b;
+}
+
 std::string num(double v) {
   if (!std::isfinite(v)) return "n/a";
   char b[32];
@@ -48,7 +56,7 @@ std::string cell(const val::GoalRow& r) {
 // The reference's uncertainty beside an error: u_val (u_num, u_input).
 std::string u_text(const val::GoalRow& r) {
   if (!r.has_u) return "";
-  return pct(r.u.u_val()) + " (" + pct(r.u.u_num()) + ", " + pct(r.u.u_input) + ")";
+  return upct(r.u.u_val()) + " (" + upct(r.u.u_num()) + ", " + upct(r.u.u_input) + ")";
 }
 
 nlohmann::json to_json(const val::Uncertainty& u) {
@@ -141,10 +149,12 @@ void print_text(const val::SuiteResult& r, const SuiteCliOptions& o, const char*
   std::printf("# suite %s against the reference (%s set, rtol %g); plant: %s%s\n\n", r.suite.name.c_str(), set,
               o.ref.rtol, o.plant.c_str(), o.params.empty() ? "" : (", parameters " + o.params).c_str());
   std::printf("%s.\n\n", r.suite.summary.c_str());
-  std::printf("%d reference runs (%d from the cache), %.1f s of reference CPU; overlays in %s.\n\n", r.reference_runs,
+  std::printf("%d reference runs (%d from the cache), %.1f s of reference CPU in this invocation; overlays in %s.\n\n",
+              r.reference_runs,
               r.from_cache, r.reference_cpu_s, dir.c_str());
   std::printf("Relative errors of the plant against the reference (bold: over the goal; goals: ratio %g %% RMS, "
-              "speeds %g %% RMS, mean axial forces %g %%). Holding F1: the plant's driver clamping that holds the "
+              "speeds %g %% RMS, mean axial forces %g %%; u: the reference's own uncertainty u_val where measured, on the "
+              "run or its kind, below). Holding F1: the plant's driver clamping that holds the "
               "start's ratio over the reference's.\n\n",
               100 * val::GoalLimits::ratio, 100 * val::GoalLimits::speed, 100 * val::GoalLimits::axial);
   std::printf("| run | kind | fit | ratio RMS | r2/r1 RMS | omega1 RMS | omega2 RMS | mean F_ax1 | mean F_ax2 | "
@@ -153,7 +163,8 @@ void print_text(const val::SuiteResult& r, const SuiteCliOptions& o, const char*
     std::printf("| %s | %s | %s |", k.m.name.c_str(), k.m.kind.c_str(), k.held_out ? "held out" : "fit");
     for (const char* g : kRunGoalNames)
       for (const auto& row : r.goals)
-        if (row.where == k.m.name && row.goal == g) std::printf(" %s |", cell(row).c_str());
+        if (row.where == k.m.name && row.goal == g)
+          std::printf(" %s%s |", cell(row).c_str(), row.has_u ? (" (u " + upct(row.u.u_val()) + ")").c_str() : "");
     const double ref_hold = val::reference_hold_clamp1_N(k.m, k.ref.series);
     std::printf(" %s | %s |\n", pct(k.hold.clamp1_N / ref_hold - 1.0).c_str(),
                 k.ref.failure.empty() ? "" : k.ref.failure.c_str());
@@ -181,8 +192,8 @@ void print_text(const val::SuiteResult& r, const SuiteCliOptions& o, const char*
                 "/ 100, u_input each open choice's spread / (2 sqrt 3), u_val = sqrt(u_num(100)^2 + u_input^2).\n\n"
                 "| measured on | quantity | u_num /10 | u_num /100 | u_input | u_val |\n|---|---|---|---|---|---|\n");
     for (const auto& m : r.uncertainty)
-      std::printf("| %s | %s | %s | %s | %s | %s |\n", m.where.c_str(), m.goal.c_str(), pct(m.u.u_num10).c_str(),
-                  pct(m.u.u_num100).c_str(), pct(m.u.u_input).c_str(), pct(m.u.u_val()).c_str());
+      std::printf("| %s | %s | %s | %s | %s | %s |\n", m.where.c_str(), m.goal.c_str(), upct(m.u.u_num10).c_str(),
+                  upct(m.u.u_num100).c_str(), upct(m.u.u_input).c_str(), upct(m.u.u_val()).c_str());
   }
   // Met per goal, fit and held out apart.
   std::printf("\n| goal | met (fit) | met (held out) |\n|---|---|---|\n");

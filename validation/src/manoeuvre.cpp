@@ -46,7 +46,7 @@ double driver_radius_for_ratio(double r1_m, double r2_m, double c_m, double rati
   const double line = cvt::mbd::DriveGeometry(r1_m, r2_m, c_m).pitch_line_m;
   // r2/r1 falls as r1 grows along the pitch line: bisection on r1.
   double lo = 1e-3, hi = 0.5 * line / cvt::kPi;
-  for (int i = 0; i < 200 && hi - lo > 1e-15; ++i) {
+  for (int i = 0; i < 200; ++i) {
     const double mid = 0.5 * (lo + hi);
     double r2 = std::nan("");  // no driven radius fits: the driver radius is too large
     try {
