@@ -78,7 +78,7 @@ std::vector<std::shared_ptr<LoadedScene>> scenes_for(const std::string& which, c
   return out;
 }
 
-nlohmann::json jnum(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+nlohmann::json jnum(double v) { return json_number(v); }
 nlohmann::json jtime(double t) { return t >= 0 ? nlohmann::json(t) : nlohmann::json(nullptr); }
 
 nlohmann::json to_json(const SceneOutput& o) {
@@ -121,20 +121,8 @@ nlohmann::json to_json(const SceneOutput& o) {
   return j;
 }
 
-// A value one model lacks (NaN: no common sample) reads "n/a".
-std::string pct(double v) {
-  if (!std::isfinite(v)) return "n/a";
-  char b[32];
-  std::snprintf(b, sizeof b, "%.1f %%", 100.0 * v);
-  return b;
-}
-
-std::string fmt(double v) {
-  if (!std::isfinite(v)) return "n/a";
-  char b[32];
-  std::snprintf(b, sizeof b, "%.4g", v);
-  return b;
-}
+std::string pct(double v) { return pct_text(v); }
+std::string fmt(double v) { return num_text(v); }
 
 std::string tfmt(double t) { return t >= 0 ? fmt(t) + " s" : "never"; }
 

@@ -23,14 +23,9 @@ namespace {
 
 namespace val = cvt::validation;
 
-nlohmann::json jnum(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-
-std::string pct(double v) {
-  if (!std::isfinite(v)) return "n/a";
-  char b[32];
-  std::snprintf(b, sizeof b, "%.1f %%", 100.0 * v);
-  return b;
-}
+nlohmann::json jnum(double v) { return json_number(v); }
+std::string pct(double v) { return pct_text(v); }
+std::string num(double v) { return num_text(v); }
 
 // An uncertainty: small, so two significant digits.
 std::string upct(double v) {
@@ -40,12 +35,6 @@ std::string upct(double v) {
   return b;
 }
 
-std::string num(double v) {
-  if (!std::isfinite(v)) return "n/a";
-  char b[32];
-  std::snprintf(b, sizeof b, "%.4g", v);
-  return b;
-}
 
 // A goal's error in the table: bold where it misses its limit.
 std::string cell(const val::GoalRow& r) {

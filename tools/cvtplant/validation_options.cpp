@@ -2,6 +2,7 @@
 #include "validation_options.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <system_error>
 
@@ -62,6 +63,22 @@ cvt::validation::RunSettings settings_for(const cvt::validation::RunSettings& st
   out.set = cvt::validation::parameter_set(!o.set.empty() ? o.set : scene.reference_set);
   return out;
 }
+
+std::string pct_text(double v) {
+  if (!std::isfinite(v)) return "n/a";
+  char b[32];
+  std::snprintf(b, sizeof b, "%.1f %%", 100.0 * v);
+  return b;
+}
+
+std::string num_text(double v) {
+  if (!std::isfinite(v)) return "n/a";
+  char b[32];
+  std::snprintf(b, sizeof b, "%.4g", v);
+  return b;
+}
+
+nlohmann::json json_number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 void prepare_out_dir(const ReferenceOptions& o) {
   make_dir(o.out_dir);

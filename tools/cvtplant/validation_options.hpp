@@ -6,6 +6,8 @@
 
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "scene_file.hpp"
 #include "cvtplant/validation/scene_check.hpp"
 
@@ -35,6 +37,12 @@ cvt::validation::RunSettings reference_settings(const CLI::App* sub, const Refer
 // scene's own (a scene file's `reference_set`; the built-in scenes' seed).
 cvt::validation::RunSettings settings_for(const cvt::validation::RunSettings& st, const ReferenceOptions& o,
                                           const LoadedScene& scene);
+
+// A relative error as "12.3 %", a value to four digits, and a value as
+// JSON; a value one model lacks (NaN: no common sample) reads "n/a" / null.
+std::string pct_text(double v);
+std::string num_text(double v);
+nlohmann::json json_number(double v);
 
 // Creates the output directory and its reference-cache/ (with their
 // parents); throws UsageError naming --out-dir.

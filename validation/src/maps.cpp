@@ -50,12 +50,7 @@ std::string tag(const char* what, double a, double b, double c) {
 }
 
 Manoeuvre shift_manoeuvre(double omega1, double ratio, double delta) {
-  OperatingPoint op;
-  op.omega1_rad_s = omega1;
-  op.ratio = ratio;
-  op.tau_in_Nm = kShiftTorque_Nm;
-  op.clamp2_N = controller_clamp2_N(kShiftTorque_Nm, ratio);
-  Manoeuvre m = clamp_step_manoeuvre(op, delta, 0.0, kShiftTo_s);
+  Manoeuvre m = clamp_step_manoeuvre(controller_point(omega1, ratio, kShiftTorque_Nm), delta, 0.0, kShiftTo_s);
   m.name = tag("rate", omega1, ratio, delta);
   m.kind = "shift-rate";
   if (delta == 0.0) m.clamp1_factor = TimeProfile::constant(1.0);

@@ -22,14 +22,7 @@ std::string label(const char* what, double a, double b, double c) {
 // A factor that steps from 1 to exp(delta) over 1 ms at t.
 TimeProfile log_step(double delta, double t) { return TimeProfile{{{t, 1.0}, {t + 1e-3, std::exp(delta)}}}; }
 
-OperatingPoint point(double omega1, double ratio, double torque) {
-  OperatingPoint op;
-  op.omega1_rad_s = omega1;
-  op.ratio = ratio;
-  op.tau_in_Nm = torque;
-  op.clamp2_N = controller_clamp2_N(torque, ratio);
-  return op;
-}
+OperatingPoint point(double omega1, double ratio, double torque) { return controller_point(omega1, ratio, torque); }
 
 // docs/validation.md#suite: a ratio sweep as the SIL's ratio-sweep drives
 // it, by the clamping-force ratio alone: up towards overdrive, back down and
@@ -92,6 +85,15 @@ double controller_clamp2_N(double torque_Nm, double ratio) {
   static const cvt::mbd::ProductionEnvelope e = cvt::mbd::production_envelope();
   const double r1 = driver_radius_for_ratio(p.r1_m, p.r2_m, p.center_distance_m, ratio);
   return std::max(e.clamp_min_N, capacity_clamp_N(torque_Nm, r1, p.friction.mu0, p.beta0_rad, e.clamp_safety));
+}
+
+OperatingPoint controller_point(double omega1_rad_s, double ratio, double torque_Nm) {
+  OperatingPoint op;
+  op.omega1_rad_s = omega1_rad_s;
+  op.ratio = ratio;
+  op.tau_in_Nm = torque_Nm;
+  op.clamp2_N = controller_clamp2_N(torque_Nm, ratio);
+  return op;
 }
 
 Manoeuvre hold_manoeuvre(double omega1_rad_s, double ratio, double torque_Nm, double t_end_s) {

@@ -32,6 +32,9 @@ Suite suite_by_name(const std::string& name);  // throws InputError naming the s
 // factor where that is higher (docs/mbd-production.md#envelope).
 double controller_clamp2_N(double torque_Nm, double ratio);
 
+// An operating point with the controller's driven clamping for its torque.
+OperatingPoint controller_point(double omega1_rad_s, double ratio, double torque_Nm);
+
 // A steady hold: released with the holding clamping, t_end_s long.
 Manoeuvre hold_manoeuvre(double omega1_rad_s, double ratio, double torque_Nm, double t_end_s);
 // A step of ln(F1/F2) by `delta` at t = at_s (a 1 ms ramp) from a hold.
