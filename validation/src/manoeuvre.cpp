@@ -350,7 +350,12 @@ void append_plant(Series& out, cvt::IRomSimulator<double>& v, double t, const Ri
   out.tau_load_Nm.push_back(o.tau_load_Nm);
 }
 
-constexpr long kLockFrames = 200;       // the plant's hold at the operating point (the reference's is 0.2 s)
+// The plant's hold at the operating point: at least the reference's 0.2 s,
+// then until the driven pulley's speed settles (its lumps start unloaded and
+// take the torque up during the hold; the driven pulley's time constant
+// under the road load, J2 / c_v, is about 0.5 s at 150 N m), at most 5 s.
+constexpr long kLockFrames = 200, kLockMaxFrames = 5000;
+constexpr double kSettled_rad_s = 1e-3;  // driven speed change over 10 frames that counts as settled
 constexpr long kTrialFrames = 40;       // a trial release: the radius's rate over its last 30 frames
 constexpr long kTrialSkipFrames = 10;
 
@@ -401,13 +406,19 @@ Series plant_manoeuvre(const Manoeuvre& m, const cvt::Scene& plant, const Series
   // reset every frame, the rest settles under the load.
   const auto w1 = static_cast<std::size_t>(rig.ix.w1), rho = static_cast<std::size_t>(rig.ix.rho),
              rhod = static_cast<std::size_t>(rig.ix.rho_dot);
-  for (long k = 0; k < kLockFrames; ++k) {
+  const auto w2 = static_cast<std::size_t>(rig.ix.w2);
+  double w2_before = x0[w2];
+  for (long k = 0; k < kLockMaxFrames; ++k) {
     if (!rig.step(u)) fault("while held at the operating point");
     std::vector<double> x = rig.state();
     x[w1] = x0[w1];
     x[rho] = x0[rho];
     x[rhod] = x0[rhod];
     rig.sim().set_state(x.data());
+    if ((k + 1) % 10 == 0) {
+      if (k + 1 >= kLockFrames && std::fabs(x[w2] - w2_before) < kSettled_rad_s) break;
+      w2_before = x[w2];
+    }
   }
   const std::vector<double> locked = rig.state();
   // The plant's own holding clamping: trial releases, secant on ln F1 for a

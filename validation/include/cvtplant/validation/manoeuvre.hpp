@@ -122,9 +122,10 @@ struct PlantHold {
 
 // The plant of scene `plant` (its features, which must include wedging,
 // parameters and numerics; its inputs and initial state are the
-// manoeuvre's) through the manoeuvre: held at the operating point for
-// 0.2 s (radial state and primary speed locked, the driven pulley finding
-// its speed under the load, as the reference's start), then released with
+// manoeuvre's) through the manoeuvre: held at the operating point (radial
+// state and primary speed locked) for at least 0.2 s, as the reference's
+// start, and until the driven pulley has found its speed under the load
+// (at most 5 s: the plant's lumps start unloaded), then released with
 // the inputs of manoeuvre_inputs. With a reference run, its holding
 // clamping is the plant's too (the same inputs); without, the plant's own. Samples every frame from t =
 // 0, stopping as the reference's rule says. Throws InputError for a plant
