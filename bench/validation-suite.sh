@@ -21,4 +21,4 @@ cli=$build/tools/cvtplant
 mkdir -p "$out"
 "$cli" validate --suite controller --out-dir "$out" --json "$@" >"$out/suite-controller.json"
 "$cli" validate --suite controller --out-dir "$out" "$@"
-echo "JSON: $out.suite-controller.json" >&2
+echo "JSON: $out/suite-controller.json" >&2
