@@ -1,9 +1,9 @@
 #pragma once
 // The manoeuvre suites (docs/validation.md#suite): the runs `cvtplant
-// validate --suite` compares the plant with the reference on and `cvtplant
-// calibrate --suite` fits the plant to, each split into the manoeuvres the
-// fit sees and the held-out ones it never sees; and the manoeuvres the maps
-// are made of (docs/validation.md#maps).
+// validate --suite` compares the plant with the reference on, each split
+// into the manoeuvres a calibration may fit and the held-out ones it must
+// never see; and the manoeuvres the maps are made of
+// (docs/validation.md#maps).
 #include <string>
 #include <vector>
 
