@@ -1,5 +1,5 @@
 // `cvtplant mbd`: the multibody chain CVT, the offline reference (docs/cli.md#mbd,
-// docs/mbd.md): seed case 1 or 2, BDF (CVODE + KLU) or the seed's RK4, a CSV
+// docs/mbd.md): seed case 1 or 2, BDF (CVODE) or the seed's RK4, a CSV
 // per sample, a JSON or text summary, a progress bar on a terminal.
 #include "cmd_mbd.hpp"
 
