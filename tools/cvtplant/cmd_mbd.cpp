@@ -350,7 +350,7 @@ nlohmann::json summary_json(const ModelOptions& o, int friction_case, const RunO
   j["case"] = o.production() ? nlohmann::json(nullptr) : nlohmann::json(friction_case);
   j["friction"] = o.production() ? "production" : friction_case == 1 ? "case1" : "case2";
   j["method"] = o.method;
-  j["linear_solver"] = o.method == "bdf" ? nlohmann::json(o.linear_solver) : nlohmann::json(nullptr);
+  if (o.method == "bdf") j["linear_solver"] = o.linear_solver;
   j["rtol"] = o.method == "bdf" ? nlohmann::json(o.rtol) : nlohmann::json(nullptr);
   j["dt_s"] = o.method == "rk4" ? nlohmann::json(o.dt_s) : nlohmann::json(nullptr);
   j["sheaves"] = o.sheave_mode();
