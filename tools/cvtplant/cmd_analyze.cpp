@@ -25,6 +25,7 @@
 #include "cvtplant/analysis/sweep.hpp"
 #include "cvtplant/analysis/systems.hpp"
 #include "cvtplant/analysis/test01.hpp"
+#include "cmd_seed_section4_reference.hpp"
 #include "io_util.hpp"
 #include "options.hpp"
 #include "progress.hpp"
@@ -669,7 +670,8 @@ cvtcli::Action register_analyze(CLI::App& app) {
                                  "the seed's section 4 pipeline on ROM plant signals (1 ms samples, transient removed, "
                                  "normalised, AMI delay, FNN/Cao dimension, Rosenstein/Kantz exponent, recurrence "
                                  "plot + RQA, 0-1 test, verdict) with figures and a JSON summary");
-    c->add_option("--scene", a->scene, "plant scene: built-in (seed-case1, seed-case2, ...; see cvtplant scenes) or a TOML scene file")->required();
+    c->add_option("--scene", a->scene, "plant scene: built-in (seed-case1, seed-case2, ...; see cvtplant scenes) or a TOML scene file");
+    const auto reference = cvtcli::add_section4_reference(c);
     c->add_option("--out-dir", a->out_dir, "output directory: <signal>/*.png and summary.json")->required();
     c->add_option("--signals", a->signals, "comma-separated plant outputs (F_ax, torque_transmitted, slip, v_rel1, ...)");
     cvtcli::add_real(c, "--t-end", a->t_end, {0, 1e5, true}, "simulated time [s] (default: the scene's)");
@@ -678,7 +680,9 @@ cvtcli::Action register_analyze(CLI::App& app) {
     cvtcli::add_int(c, "--m", a->m, 1, 30, "embedding dimension (default: FNN)");
     c->add_flag("--json", a->json, "print the summary as JSON");
     cvtcli::add_caps(c, a->caps, true, true);
-    tools.push_back({c, [a] {
+    tools.push_back({c, [a, reference] {
+                       if (cvtcli::section4_reference_selected(*reference)) return cvtcli::run_section4_reference(*reference);
+                       if (a->scene.empty()) throw cvtcli::UsageError{"--scene or --reference is required"};
                        std::vector<std::string> names;
                        {
                          std::stringstream ss(a->signals);
