@@ -1,0 +1,68 @@
+// The SIL scenarios (docs/sil.md#scenarios): what the harness plays on the
+// bus (driver demand, ratio set-point, load, injected faults) and the bounds
+// its criteria judge. Host only: the harness, not the firmware.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "cvtplant/can/messages.hpp"
+
+namespace cvt::sil::harness {
+
+// 10 ms control period = the CtrlCmd cycle, 1 ms plant frames.
+inline constexpr int kFramesPerPeriod = 10;
+inline constexpr double kPeriod_s = 0.01;
+
+// Faults a scenario injects on purpose (docs/sil.md#fault-scenarios). Periods
+// are 10 ms control periods; -1 = none.
+struct Faults {
+  std::vector<int> lost_cmd_periods;  // the controller's CtrlCmd lost on the wire
+  int lost_step_period = -1;          // the harness's Step request lost on the wire
+  int lost_status_period = -1;        // PlantStatus lost to the harness
+  int lost_speeds_period = -1;        // PlantSpeeds lost to the harness (a partial group)
+  double freeze_start_s = -1, freeze_end_s = -1;  // controller hung, its driver repeating the last frame
+  double reboot_s = -1;                           // controller restarts, counter from 0
+  double flood_start_s = -1, flood_end_s = -1;    // controller sends flood_frames CtrlCmd per period
+  int flood_frames = 0;
+  int lost_requests() const {
+    return (lost_step_period >= 0) + (lost_status_period >= 0) + (lost_speeds_period >= 0);
+  }
+  // Faults of the controller's own link or software: only a controller the
+  // harness runs itself can be made to show them.
+  bool in_controller() const {
+    return !lost_cmd_periods.empty() || freeze_start_s >= 0 || reboot_s >= 0 || flood_frames > 0;
+  }
+};
+
+struct Scenario {
+  const char* name;
+  const char* what;
+  double t_end_s;
+  std::function<float(double)> demand_Nm;
+  bool load_override = false;
+  std::function<float(double)> load_Nm = [](double) { return 0.0f; };
+  double link_loss_start_s = -1, link_loss_end_s = -1;  // controller silent in [start, end)
+  Faults faults{};
+  // Ratio control (docs/sil.md#ratio-scenarios): the variable-ratio scene,
+  // the controller's RatioLaw on this set-point; empty = the ClampLaw alone.
+  cvt::can::SceneId scene = cvt::can::SceneId::TipIn;
+  std::function<float(double)> ratio_target{};
+  double track_bound = 0;       // |ratio - set-point| once the set-point has held for settle_s
+  double settle_s = 1.0;
+  double slip_bound = 0.10;     // max |slip| outside the clamping drop
+  double clamp_drop_start_s = -1, clamp_drop_end_s = -1;  // supply pressure at clamp_drop_factor
+  float clamp_drop_factor = 1.0f;
+  bool expect_end_stop = false;  // the sweep drives the chain onto the underdrive and overdrive stops
+};
+
+// a before t0, b after t1, linear between.
+float ramp(double t, double t0, double t1, float a, float b);
+
+// Every scenario, in the order `--scenario all` runs them.
+std::vector<Scenario> scenarios();
+// "ratio-sweep, kick-down, ... or all", for usage messages.
+std::string scenario_names();
+
+}  // namespace cvt::sil::harness

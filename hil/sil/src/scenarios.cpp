@@ -1,0 +1,100 @@
+// The scenario table (docs/sil.md#scenarios, #ratio-scenarios, #fault-scenarios).
+#include "cvtplant/sil/harness/scenario.hpp"
+
+namespace cvt::sil::harness {
+
+float ramp(double t, double t0, double t1, float a, float b) {
+  if (t <= t0) return a;
+  if (t >= t1) return b;
+  return a + (b - a) * static_cast<float>((t - t0) / (t1 - t0));
+}
+
+namespace {
+
+// docs/sil.md#ratio-scenarios: the three ratio-control scenarios on the
+// variable-ratio scene (ratio-control: wedging, 60 N m, road load).
+void add_ratio_scenarios(std::vector<Scenario>& v) {
+  Scenario sw{"ratio-sweep",
+              "60 N m; set-point 1.5 -> 2.3 (low) -> 1.0 (overdrive) -> 1.5 in ramps, then beyond both end stops", 0,
+              [](double) { return 60.0f; }};
+  sw.scene = cvt::can::SceneId::RatioControl;
+  sw.ratio_target = [](double t) {
+    if (t < 4.0) return ramp(t, 0.5, 2.5, 1.5f, 2.3f);
+    if (t < 9.0) return ramp(t, 4.0, 7.0, 2.3f, 1.0f);
+    if (t < 12.0) return ramp(t, 9.0, 10.0, 1.0f, 1.5f);
+    if (t < 14.0) return 2.9f;  // beyond the underdrive stop (2.65)
+    return 0.8f;                // beyond the overdrive stop (0.89)
+  };
+  sw.t_end_s = 17.5;
+  sw.track_bound = 0.05;
+  sw.expect_end_stop = true;
+  v.push_back(sw);
+  Scenario kd{"kick-down", "ratio 1.0 at 40 N m; at 2 s tip-in to 120 N m over 0.2 s and set-point 1.0 -> 2.0", 5.5,
+              [](double t) { return ramp(t, 2.0, 2.2, 40.0f, 120.0f); }};
+  kd.scene = cvt::can::SceneId::RatioControl;
+  kd.ratio_target = [](double t) { return t < 0.5 ? 1.5f : (t < 2.0 ? 1.0f : 2.0f); };
+  kd.track_bound = 0.05;
+  kd.settle_s = 2.0;
+  v.push_back(kd);
+  Scenario sr{"slip-recovery", "ratio 1.5 at 100 N m; the clamping supply drops to 20 % for 500 ms at 1 s, then back",
+              3.5, [](double) { return 100.0f; }};
+  sr.scene = cvt::can::SceneId::RatioControl;
+  sr.ratio_target = [](double) { return 1.5f; };
+  sr.track_bound = 0.05;
+  sr.clamp_drop_start_s = 1.0;
+  sr.clamp_drop_end_s = 1.5;
+  sr.clamp_drop_factor = 0.2f;
+  v.push_back(sr);
+}
+
+}  // namespace
+
+std::vector<Scenario> scenarios() {
+  std::vector<Scenario> v;
+  add_ratio_scenarios(v);
+  v.push_back({"tip-in", "driver demand 20 -> 120 N m over 0.2 s at 1 s", 3.0,
+               [](double t) { return ramp(t, 1.0, 1.2, 20.0f, 120.0f); }});
+  Scenario ls{"load-step", "80 N m demand; harness load override 0 -> 100 N m at 1 s", 3.0,
+              [](double) { return 80.0f; }};
+  ls.load_override = true;
+  ls.load_Nm = [](double t) { return t < 1.0 ? 0.0f : 100.0f; };
+  v.push_back(ls);
+  Scenario cl{"clamp-loss", "100 N m; the controller's CtrlCmd is lost for 200 ms at 1 s", 2.5,
+              [](double) { return 100.0f; }};
+  cl.link_loss_start_s = 1.0;
+  cl.link_loss_end_s = 1.2;
+  v.push_back(cl);
+  Scenario lf{"lost-frames",
+              "100 N m; two CtrlCmd lost at 0.5 s, a Step request at 0.8 s, a PlantStatus at 1.0 s, a PlantSpeeds at "
+              "1.2 s",
+              1.5, [](double) { return 100.0f; }};
+  lf.faults.lost_cmd_periods = {50, 51};
+  lf.faults.lost_step_period = 80;
+  lf.faults.lost_status_period = 100;
+  lf.faults.lost_speeds_period = 120;
+  v.push_back(lf);
+  Scenario fz{"frozen-controller", "100 N m; the controller hangs at 1 s for 300 ms, its CAN driver repeating its last frame",
+              2.0, [](double) { return 100.0f; }};
+  fz.faults.freeze_start_s = 1.0;
+  fz.faults.freeze_end_s = 1.3;
+  v.push_back(fz);
+  Scenario rb{"controller-restart", "100 N m; the controller restarts at 1 s, its E2E counter from 0", 1.5,
+              [](double) { return 100.0f; }};
+  rb.faults.reboot_s = 1.0;
+  v.push_back(rb);
+  Scenario fl{"controller-flood", "100 N m; for 100 ms at 1 s the controller sends 20 CtrlCmd per 10 ms period", 1.5,
+              [](double) { return 100.0f; }};
+  fl.faults.flood_start_s = 1.0;
+  fl.faults.flood_end_s = 1.1;
+  fl.faults.flood_frames = 20;
+  v.push_back(fl);
+  return v;
+}
+
+std::string scenario_names() {
+  std::string n;
+  for (const Scenario& s : scenarios()) n += std::string(n.empty() ? "" : ", ") + s.name;
+  return n + " or all";
+}
+
+}  // namespace cvt::sil::harness
