@@ -10,7 +10,7 @@
 
 #include "commands.hpp"
 #include "progress.hpp"
-#include "validation.hpp"
+#include "cvtplant/validation/cache.hpp"
 #include "cvtplant/mbd/model.hpp"
 
 namespace cvtcli::section4ref {
@@ -114,8 +114,8 @@ void hold_of(const Scenario& s, const std::string& cache_dir, const std::string&
   cvt::mbd::RunOptions o;
   o.t_end_s = 1e-3;
   const std::string key = "section4 hold, cache format " + std::to_string(kCacheFormat) + "\n" +
-                          validation::reference_key(p, o);
-  const std::string base = cache_dir.empty() ? "" : cache_dir + "/" + validation::key_hash(key);
+                          cvt::validation::reference_key(p, o);
+  const std::string base = cache_dir.empty() ? "" : cache_dir + "/" + cvt::validation::key_hash(key);
   if (!base.empty() && read_all(base + ".key") == key) {
     std::stringstream m(read_all(base + ".hold"));
     if (m >> r.holding_torque_Nm >> r.omega2_release_rad_s >> r.hold_omega2_range_rel >> r.hold_torque_change_rel)
@@ -208,8 +208,8 @@ Run reference_run(const Scenario& s, const Numerics& n, const std::string& cache
   const cvt::mbd::MbdParams p = scenario_params(s, r.tau_in_Nm);
   const cvt::mbd::RunOptions o = run_options(s, n);
   const std::string key = "section4 run, cache format " + std::to_string(kCacheFormat) + "\n" +
-                          validation::reference_key(p, o);
-  const std::string base = cache_dir.empty() ? "" : cache_dir + "/" + validation::key_hash(key);
+                          cvt::validation::reference_key(p, o);
+  const std::string base = cache_dir.empty() ? "" : cache_dir + "/" + cvt::validation::key_hash(key);
   if (!base.empty() && read_all(base + ".key") == key) {
     Run c;
     if (read_run(base, c)) {
