@@ -314,7 +314,7 @@ json analyse_signal(const Section4Reference& o, const SeedChoices& sc, const Sce
       sp.dt = dt;
       const an::Separation s = an::separation_growth(slice(a, 0, n), slice(b, 0, n), sp);
       rj["separation"] = separation_json(s);
-      seps.push_back({"RK4 dt " + std::to_string(o.rk4_dt) + " s against the tightest BDF", s});
+      seps.push_back({"RK4 dt " + section4ref::format_speed(o.rk4_dt) + " s against the tightest BDF", s});
       // The last half of the RK4 span, both runs: statistics and, with enough points, the classification.
       const std::size_t h = n / 2;
       rj["window"] = {{"t_begin_s", static_cast<double>(h) * dt}, {"t_end_s", static_cast<double>(n) * dt}};
