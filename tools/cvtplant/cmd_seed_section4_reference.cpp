@@ -381,8 +381,7 @@ std::shared_ptr<Section4Reference> add_section4_reference(CLI::App* c) {
   r->app = c;
   c->add_flag("--reference", r->reference,
               "run the pipeline on the multibody reference (docs/seed-section4.md) instead of a ROM scene");
-  c->add_option("--case", r->friction_case, "with --reference: the seed's friction case, 1 or 2")
-      ->check(CLI::IsMember({1, 2}));
+  add_int(c, "--case", r->friction_case, 1, 2, "with --reference: the seed's friction case (Table 2)");
   c->add_option("--steady", r->steady,
                 "with --reference: steady operating points W1[:W2],... [rad/s]: the driver speed W1 in [5, 400] and the "
                 "driven speed of the spin-up W2 in [2.5, 200] (default W1/2) (default: the seed's run-up from rest)");

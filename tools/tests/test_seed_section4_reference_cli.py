@@ -43,7 +43,7 @@ def bad_input(binary, tmp):
         (["--reference", "--case", "1", "--steady", "60:x", "--out-dir", out], "--steady"),
         (["--reference", "--case", "1", "--convergence", "0.5", "--out-dir", out], "--convergence"),
         (["--reference", "--case", "1", "--signals", "torque", "--out-dir", out], "torque"),
-        (["--reference", "--case", "3", "--out-dir", out], "--case"),
+        (["--reference", "--case", "3", "--out-dir", out], "3"),
         (["--reference", "--case", "2", "--points", "20000", "--t-end", "5", "--out-dir", out], "window"),
         (["--reference", "--case", "1", "--max-steps", "10", "--out-dir", out], "--max-steps"),
     ]
