@@ -118,9 +118,12 @@ json stationarity_json(const an::Stationarity& s) {
   json w = json::array();
   for (const auto& x : s.windows)
     w.push_back({{"t_begin_s", x.t_begin_s}, {"t_end_s", x.t_end_s}, {"mean", x.mean}, {"std", x.std},
-                 {"lines_Hz", x.peaks_Hz}, {"line_power_rel", x.peak_power_rel}, {"dominant_line_Hz", x.dominant_line_Hz}});
+                 {"lines_Hz", x.peaks_Hz}, {"line_power_rel", x.peak_power_rel}, {"dominant_line_Hz", x.dominant_line_Hz},
+                 {"mean_Hz", x.mean_Hz}});
   return {{"stationary", s.stationary}, {"mean_shift_std", s.mean_shift}, {"std_ratio", s.std_ratio},
-          {"dominant_Hz", s.dominant_Hz}, {"line_shift_rel", s.line_shift}, {"line_tolerance_rel", s.line_tolerance},
+          {"dominant_Hz", s.dominant_Hz}, {"dominant_fraction", s.dominant_fraction}, {"line_tested", s.line_tested},
+          {"line_shift_rel", s.line_shift}, {"line_tolerance_rel", s.line_tolerance},
+          {"mean_frequency_shift_rel", s.mean_frequency_shift},
           {"reasons", s.reasons}, {"windows", w}};
 }
 
