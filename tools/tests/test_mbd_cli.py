@@ -66,6 +66,18 @@ class Run(unittest.TestCase):
         self.assertAlmostEqual(j["F_ax1_mean_N"] / 3300.0, 1.0, delta=0.02)
         self.assertAlmostEqual(j["F_ax2_mean_N"] / 3636.8, 1.0, delta=0.02)  # static thrust ratio theta2/theta1
 
+    def test_production_set(self):
+        # docs/mbd-production.md: 53 links, clamped sheaves by default, its own friction.
+        r = run("mbd", "--set", "production", "--clamp-N", "12500", "--clamp2-N", "12500", "--tau-in", "0",
+                "--tau-load", "0", "--t-end", "0.002", "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        j = json.loads(r.stdout)
+        self.assertEqual(j["set"], "production")
+        self.assertEqual(j["links"], 53)
+        self.assertEqual(j["sheaves"], "clamped")
+        self.assertIsNone(j["case"])
+        self.assertAlmostEqual(j["F_ax2_mean_N"] / 12500.0, 1.0, delta=0.05)
+
     def test_rk4_option(self):
         r = run("mbd", "--case", "1", "--t-end", "0.005", "--method", "rk4", "--dt", "1e-6", "--json")
         self.assertEqual(r.returncode, 0, r.stderr)
@@ -90,6 +102,13 @@ class BadInput(unittest.TestCase):
     def test_case(self):
         self.bad("--t-end", "1", needle="--case")
         self.bad("--case", "3", needle="--case")
+
+    def test_parameter_set(self):
+        self.bad("--set", "stock", needle="--set")
+        self.bad("--set", "production", "--case", "1", "--clamp-N", "12500", needle="--case")
+        self.bad("--set", "production", "--links", "44", "--clamp-N", "12500", needle="--links")
+        self.bad("--set", "production", needle="--clamp-N")
+        self.bad("figures", "--out-dir", "/tmp", "--set", "production", "--clamp-N", "12500", needle="--set seed")
 
     def test_numbers_not_numbers_or_out_of_range(self):
         self.bad("--case", "1", "--t-end", "abc", needle="--t-end")

@@ -15,7 +15,7 @@ bool in_window(double t, double start, double end) { return start >= 0 && t >= s
 
 double grew(std::uint16_t now, std::uint16_t then) { return static_cast<std::uint16_t>(now - then); }
 
-Sample sample_of(const Scenario& sc, const cvtctl::ClampLawParams& capacity, double t_s, double t_cmd,
+Sample sample_of(const Scenario& sc, const Capacity& capacity, double t_s, double t_cmd,
                  const cvt::can::PlantStatus& st, const GroupView& g, const Commands& cmd) {
   Sample s;
   s.t_s = t_s;
@@ -27,20 +27,21 @@ Sample sample_of(const Scenario& sc, const cvtctl::ClampLawParams& capacity, dou
   s.omega1 = g.speeds.omega_driver_rad_s;
   s.omega2 = g.speeds.omega_driven_rad_s;
   const float tau = std::fabs(s.torque_Nm) < 1.0f ? 1.0f : std::fabs(s.torque_Nm);
-  s.safety = cvtctl::torque_capacity_Nm(capacity, s.axial_N) / tau;
+  s.safety = capacity.at_Nm(s.axial_N, capacity.radius_m) / tau;
   s.cmd_timeout = st.fault_cmd_timeout;
   s.watchdog = st.fault_watchdog;
   s.ratio_target = sc.ratio_target ? sc.ratio_target(t_cmd) : 0.0f;
   s.geometric_ratio = g.ratio.geometric_ratio;
   s.driven_cmd_N = cmd.driven_cmd_N;
   s.driven_axial_N = g.forces.driven_axial_force_N;
-  s.radius1_m = g.shift.radius_driver_m;
+  // A fixed-ratio plant sends no PlantShift: its running radius is the set-up one.
+  s.radius1_m = sc.ratio_target ? g.shift.radius_driver_m : capacity.radius_m;
   s.stop_under = g.shift.end_stop_underdrive;
   s.stop_over = g.shift.end_stop_overdrive;
   if (sc.ratio_target) {
     // The capacity at the driver's running radius (docs/sil.md#ratio-control).
-    const float r1 = s.radius1_m > 0.01f ? s.radius1_m : capacity.r1_m;
-    s.safety = cvtctl::torque_capacity_at_Nm(capacity, s.axial_N, r1) / tau;
+    const float r1 = s.radius1_m > 0.01f ? s.radius1_m : capacity.radius_m;
+    s.safety = capacity.at_Nm(s.axial_N, r1) / tau;
   }
   return s;
 }
@@ -89,7 +90,12 @@ void ratio_checks(const Scenario& sc, const std::vector<Sample>& trace, std::vec
                    fmt("RMS %.4f over %.0f settled samples (limit ", rms, judged) +
                    fmt("%.3f, set-point held >= %.1f s); ", sc.track_bound, sc.settle_s) +
                    fmt("whole run max %.4f RMS %.4f", run_max, run_rms)});
-  if (sc.expect_end_stop) {
+  if (sc.expect_end_stop && sc.t_end_s < sc.end_stops_by_s) {
+    c.push_back({"end_stops_reached", true,
+                 fmt("not judged: the run was cut at %.1f s, before the set-points beyond the stops (up to %.1f s)",
+                     sc.t_end_s, sc.end_stops_by_s),
+                 false});
+  } else if (sc.expect_end_stop) {
     c.push_back({"end_stops_reached", under && over,
                  fmt("PlantShift end_stop_underdrive seen %.0f, end_stop_overdrive seen %.0f", under, over)});
   }
@@ -191,8 +197,12 @@ void lockstep_checks(const Scenario& sc, const std::vector<Sample>& trace, const
                    n.periods, n.resends)});
   c.push_back({"lockstep_time_exact", n.bad_time == 0 && n.bad_mode == 0,
                fmt("%.0f groups with sim_time_us != 10000 k, %.0f not in LockStep", n.bad_time, n.bad_mode)});
-  c.push_back({"frames_valid", n.harness_rejected == 0 && n.controller_rejected == 0,
-               fmt("harness rejected %.0f, controller rejected %.0f", n.harness_rejected, n.controller_rejected)});
+  c.push_back({"frames_valid", n.harness_rejected == 0 && n.controller_rejected <= 0,
+               n.controller_rejected < 0
+                   ? fmt("harness rejected %.0f (what the controller rejected is not observable on the bus)",
+                         n.harness_rejected)
+                   : fmt("harness rejected %.0f, controller rejected %.0f", n.harness_rejected,
+                         n.controller_rejected)});
   motion_checks(sc, trace, c);
   c.push_back({"no_watchdog_fault", !any_watchdog(trace), any_watchdog(trace) ? "plant watchdog fault" : "none"});
   if (sc.link_loss_start_s >= 0 || fx.freeze_start_s >= 0) {

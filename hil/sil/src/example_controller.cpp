@@ -19,7 +19,6 @@ void ExampleController::control_period(const Scenario& sc, int k, double t) {
   if (fx.reboot_s >= 0 && std::fabs(t - fx.reboot_s) < 1e-9) node_.reboot();
   for (const int lost : fx.lost_cmd_periods)
     if (lost == k) faults_.lose_next_sent(cvt::can::CtrlCmd::kId);
-  faults_.scale_clamp(in_window(t, sc.clamp_drop_start_s, sc.clamp_drop_end_s) ? sc.clamp_drop_factor : 1.0f);
   if (!silent && sc.ratio_target) {
     node_.control_step_ratio(sc.demand_Nm(t), sc.ratio_target(t));
   } else if (!silent) {
@@ -36,10 +35,7 @@ void ExampleController::after_step() {
   }
 }
 
-void ExampleController::end_run() {
-  faults_.freeze(false);
-  faults_.scale_clamp(1.0f);
-}
+void ExampleController::end_run() { faults_.freeze(false); }
 
 Commands ExampleController::commands() const {
   return {node_.last_output().clamp_force_cmd_N, node_.last_ratio_output().driven_clamp_cmd_N};
@@ -50,10 +46,6 @@ void ExampleController::rt_begin(const Scenario&) {
   node_.reboot();
   sched_ = cvtctl::ControlSchedule{};
   steps_ = fresh_steps_ = 0;
-}
-
-void ExampleController::rt_faults(const Scenario& sc, double t) {
-  faults_.scale_clamp(in_window(t, sc.clamp_drop_start_s, sc.clamp_drop_end_s) ? sc.clamp_drop_factor : 1.0f);
 }
 
 // On every fresh group (ControlSchedule, as cvtplant-controller does).

@@ -34,8 +34,8 @@ bool HarnessNode::request(cvt::can::SimRequest r, std::uint16_t steps, cvt::can:
   return ok;
 }
 
-bool HarnessNode::sync() {
-  for (int i = 0; i < 5; ++i) {
+bool HarnessNode::sync(int attempts) {
+  for (int i = 0; i < attempts; ++i) {
     cvt::can::SimCtrl m;
     m.step_seq = seq_;
     CanFrame f;
@@ -69,10 +69,11 @@ void HarnessNode::drain() {
     if (st == CanIoStatus::Ok) take(f);
 }
 
-bool HarnessNode::send_load(bool active, float torque_Nm) {
+bool HarnessNode::send_load(bool active, float torque_Nm, float clamp_supply) {
   cvt::can::HarnessLoad m;
   m.load_override_active = active;
   m.load_torque_override_Nm = torque_Nm;
+  m.clamp_supply_factor = clamp_supply;
   CanFrame f;
   return load_.encode(m, f) == cvt::can::CodecStatus::Ok && bus_.send(f) == CanIoStatus::Ok;
 }
@@ -109,6 +110,10 @@ bool HarnessNode::take(const CanFrame& f) {
     case cvt::can::MessageId::PlantDiag: diag_ = a.plant_diag; break;
     case cvt::can::MessageId::PlantBusDiag: bus_diag_ = a.plant_bus_diag; break;
     case cvt::can::MessageId::PlantCmdDiag: cmd_diag_ = a.plant_cmd_diag; break;
+    case cvt::can::MessageId::PlantParams:
+      params_ = a.plant_params;
+      has_params_ = true;
+      break;
     case cvt::can::MessageId::PlantStatus:
       status_ = a.plant_status;
       if (status_.plant_mode == cvt::can::PlantMode::RealTime) ++realtime_statuses_;

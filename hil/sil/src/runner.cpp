@@ -9,6 +9,26 @@
 
 namespace cvt::sil::harness {
 
+namespace {
+
+// The plant's torque capacity as it published it in the answer to Reset
+// (docs/sil.md#published-parameters); a plant that published nothing cannot
+// have its safety factor judged, which a failing check says.
+Capacity plant_capacity(const HarnessNode& h, std::vector<Check>& missing) {
+  if (!h.has_params()) {
+    missing.push_back({"plant_parameters_published", false,
+                       "no PlantParams in the answer to Reset: the torque-capacity safety factor cannot be judged"});
+    return {};
+  }
+  return {h.params().capacity_coeff, h.params().radius_driver_m};
+}
+
+// HarnessLoad carries the load override and the clamping supply; a scenario
+// that uses neither sends none.
+bool sends_load(const Scenario& sc) { return sc.load_override || sc.clamp_drop_start_s >= 0; }
+
+}  // namespace
+
 ScenarioResult run_lockstep(const Scenario& sc, HarnessNode& h, FaultInjector& hf, ControllerUnderTest& ctl,
                             const RunConfig& cfg) {
   cvt::port::PosixMonotonicClock clock;
@@ -26,6 +46,8 @@ ScenarioResult run_lockstep(const Scenario& sc, HarnessNode& h, FaultInjector& h
   const cvt::can::PlantCmdDiag cmd0 = h.cmd_diag();
   const std::uint32_t resends0 = h.resends(), lost_harness0 = hf.lost(), lost_ctl0 = ctl.lost_on_purpose();
   const std::uint32_t ctl_rejected0 = ctl.rejected();
+  std::vector<Check> missing;
+  const Capacity capacity = plant_capacity(h, missing);
   h.clear_recovery();
   ctl.begin_run(sc);
   n.periods = static_cast<int>(sc.t_end_s / kPeriod_s + 0.5);
@@ -33,7 +55,7 @@ ScenarioResult run_lockstep(const Scenario& sc, HarnessNode& h, FaultInjector& h
   for (int k = 0; k < n.periods && n.no_reply == 0; ++k) {
     const double t = k * kPeriod_s;
     ctl.control_period(sc, k, t);
-    if (sc.load_override) h.send_load(true, sc.load_Nm(t));
+    if (sends_load(sc)) h.send_load(sc.load_override, sc.load_Nm(t), clamp_supply(sc, t));
     if (k == fx.lost_step_period) hf.lose_next_sent(cvt::can::SimCtrl::kId);
     if (k == fx.lost_status_period) hf.lose_next_received(cvt::can::PlantStatus::kId);
     if (k == fx.lost_speeds_period) hf.lose_next_received(cvt::can::PlantSpeeds::kId);
@@ -46,7 +68,7 @@ ScenarioResult run_lockstep(const Scenario& sc, HarnessNode& h, FaultInjector& h
     const cvt::can::PlantStatus& st = h.status();
     if (st.sim_time_us != expect_us) ++n.bad_time;
     if (st.plant_mode != cvt::can::PlantMode::LockStep) ++n.bad_mode;
-    trace.push_back(sample_of(sc, cfg.capacity, st.sim_time_us * 1e-6, t, st,
+    trace.push_back(sample_of(sc, capacity, st.sim_time_us * 1e-6, t, st,
                               GroupView{h.speeds(), h.ratio(), h.forces(), h.shift()}, ctl.commands()));
   }
   ctl.end_run();
@@ -59,7 +81,7 @@ ScenarioResult run_lockstep(const Scenario& sc, HarnessNode& h, FaultInjector& h
 
   n.resends = h.resends() - resends0;
   n.harness_rejected = h.rejected();
-  n.controller_rejected = ctl.rejected() - ctl_rejected0;
+  n.controller_rejected = ctl.observes_rejections() ? ctl.rejected() - ctl_rejected0 : -1.0;
   n.cmd_timeouts = grew(h.diag().cmd_timeouts, diag0.cmd_timeouts);
   n.rejected_frames = grew(h.diag().rejected_frames, diag0.rejected_frames);
   const cvt::can::PlantCmdDiag& cmd1 = h.cmd_diag();
@@ -70,6 +92,7 @@ ScenarioResult run_lockstep(const Scenario& sc, HarnessNode& h, FaultInjector& h
   n.controller_lost = ctl.lost_on_purpose() - lost_ctl0;
   n.max_recovery_ms = static_cast<double>(h.max_recovery_ns()) * 1e-6;
   res.checks.push_back({"trace_written", trace_written, csv});
+  res.checks.insert(res.checks.end(), missing.begin(), missing.end());
   lockstep_checks(sc, trace, n, res.checks);
   ctl.add_checks(sc, res.checks);
   return res;
@@ -88,24 +111,31 @@ ScenarioResult run_realtime(const Scenario& sc, HarnessNode& h, ControllerUnderT
   const cvt::can::PlantDiag diag0 = h.diag();
   const std::uint32_t ctl_rejected0 = ctl.rejected(), h_rejected0 = h.rejected();
   const std::uint32_t rt_status0 = h.realtime_statuses();
+  std::vector<Check> missing;
+  const Capacity capacity = plant_capacity(h, missing);
   ctl.rt_begin(sc);
   bool timeout_seen = false;
   answered = answered && h.start_realtime();
   if (bus.start) bus.start();
   const std::int64_t t0 = bus.clock.now_ns();
   const std::int64_t end = t0 + static_cast<std::int64_t>(sc.t_end_s * 1e9 + 0.5);
+  constexpr std::int64_t kLoadCycle_ns = std::int64_t{cvt::can::HarnessLoad::kCycleTime_ms} * 1000000;
+  std::int64_t next_load = t0;
   while (answered) {
     if (bus.frame) bus.frame();
     const std::int64_t now = bus.clock.now_ns();
     if (now >= end) break;
     const double t = static_cast<double>(now - t0) * 1e-9;
-    ctl.rt_faults(sc, t);
-    ctl.rt_receive(bus.poll_ns);
+    if (sends_load(sc) && now >= next_load) {
+      h.send_load(sc.load_override, sc.load_Nm(t), clamp_supply(sc, t));
+      next_load += kLoadCycle_ns;
+    }
+    ctl.rt_receive(now, bus.poll_ns);
     h.drain();
     timeout_seen = timeout_seen || h.status().fault_cmd_timeout;
     const RealtimeStep step = ctl.rt_step(sc, now, t);
     if (!step.ran || !step.fresh) continue;
-    trace.push_back(sample_of(sc, cfg.capacity, t, t, h.status(), ctl.group(), ctl.commands()));
+    trace.push_back(sample_of(sc, capacity, t, t, h.status(), ctl.group(), ctl.commands()));
   }
   ctl.rt_end();
   answered = answered && h.pause();
@@ -114,6 +144,7 @@ ScenarioResult run_realtime(const Scenario& sc, HarnessNode& h, ControllerUnderT
   const std::string csv = cfg.out_dir + "/sil-" + sc.name + "-realtime.csv";
   auto& c = res.checks;
   c.push_back({"trace_written", write_trace(csv, trace), csv});
+  c.insert(c.end(), missing.begin(), missing.end());
   // Functional criteria: judged in every run.
   const double frames = h.status().sim_time_us / 1000.0;
   const double overruns = grew(h.diag().rt_overruns, diag0.rt_overruns);
@@ -131,14 +162,17 @@ ScenarioResult run_realtime(const Scenario& sc, HarnessNode& h, ControllerUnderT
   // their counters (docs/sil.md#timeouts). With no timeout, nothing.
   const double plant_rejected = grew(h.diag().rejected_frames, diag0.rejected_frames);
   const double timeouts = grew(h.diag().cmd_timeouts, diag0.cmd_timeouts);
-  const double h_rej = h.rejected() - h_rejected0, ctl_rej = ctl.rejected() - ctl_rejected0;
+  const double h_rej = h.rejected() - h_rejected0;
+  const double ctl_rej = ctl.observes_rejections() ? ctl.rejected() - ctl_rejected0 : 0.0;
   c.push_back({"frames_valid", h_rej == 0 && ctl_rej == 0 && plant_rejected <= 2 * timeouts,
-               fmt("harness rejected %.0f, controller rejected %.0f, ", h_rej, ctl_rej) +
+               (ctl.observes_rejections() ? fmt("harness rejected %.0f, controller rejected %.0f, ", h_rej, ctl_rej)
+                                          : fmt("harness rejected %.0f, ", h_rej)) +
                    fmt("PlantDiag.rejected_frames grew by %.0f (at most 2 counter jumps per command timeout: %.0f "
                        "timeouts)",
                        plant_rejected, timeouts)});
   const bool watchdog = any_watchdog(trace) || h.status().fault_watchdog;
   c.push_back({"no_watchdog_fault", !watchdog, watchdog ? "plant watchdog fault" : "none"});
+  ctl.add_checks(sc, c);
   // Judged when the plant kept time.
   const std::size_t full_from = c.size();
   ctl.add_realtime_checks(std::floor(sc.t_end_s / kPeriod_s) - 1, c);

@@ -9,6 +9,12 @@ float ramp(double t, double t0, double t1, float a, float b) {
   return a + (b - a) * static_cast<float>((t - t0) / (t1 - t0));
 }
 
+float clamp_supply(const Scenario& sc, double t) {
+  return sc.clamp_drop_start_s >= 0 && t >= sc.clamp_drop_start_s - 1e-9 && t < sc.clamp_drop_end_s - 1e-9
+             ? sc.clamp_drop_factor
+             : 1.0f;
+}
+
 namespace {
 
 // docs/sil.md#ratio-scenarios: the three ratio-control scenarios on the
@@ -28,6 +34,8 @@ void add_ratio_scenarios(std::vector<Scenario>& v) {
   sw.t_end_s = 17.5;
   sw.track_bound = 0.05;
   sw.expect_end_stop = true;
+  sw.end_stops_by_s = 17.5;
+  sw.min_t_end_s = 3.6;  // the first ramp's set-point held 1 s
   v.push_back(sw);
   Scenario kd{"kick-down", "ratio 1.0 at 40 N m; at 2 s tip-in to 120 N m over 0.2 s and set-point 1.0 -> 2.0", 5.5,
               [](double t) { return ramp(t, 2.0, 2.2, 40.0f, 120.0f); }};
@@ -35,6 +43,7 @@ void add_ratio_scenarios(std::vector<Scenario>& v) {
   kd.ratio_target = [](double t) { return t < 0.5 ? 1.5f : (t < 2.0 ? 1.0f : 2.0f); };
   kd.track_bound = 0.05;
   kd.settle_s = 2.0;
+  kd.min_t_end_s = 4.1;
   v.push_back(kd);
   Scenario sr{"slip-recovery", "ratio 1.5 at 100 N m; the clamping supply drops to 20 % for 500 ms at 1 s, then back",
               3.5, [](double) { return 100.0f; }};
@@ -44,6 +53,7 @@ void add_ratio_scenarios(std::vector<Scenario>& v) {
   sr.clamp_drop_start_s = 1.0;
   sr.clamp_drop_end_s = 1.5;
   sr.clamp_drop_factor = 0.2f;
+  sr.min_t_end_s = 2.6;
   v.push_back(sr);
 }
 
@@ -52,17 +62,21 @@ void add_ratio_scenarios(std::vector<Scenario>& v) {
 std::vector<Scenario> scenarios() {
   std::vector<Scenario> v;
   add_ratio_scenarios(v);
-  v.push_back({"tip-in", "driver demand 20 -> 120 N m over 0.2 s at 1 s", 3.0,
-               [](double t) { return ramp(t, 1.0, 1.2, 20.0f, 120.0f); }});
+  Scenario ti{"tip-in", "driver demand 20 -> 120 N m over 0.2 s at 1 s", 3.0,
+              [](double t) { return ramp(t, 1.0, 1.2, 20.0f, 120.0f); }};
+  ti.min_t_end_s = 1.5;
+  v.push_back(ti);
   Scenario ls{"load-step", "80 N m demand; harness load override 0 -> 100 N m at 1 s", 3.0,
               [](double) { return 80.0f; }};
   ls.load_override = true;
   ls.load_Nm = [](double t) { return t < 1.0 ? 0.0f : 100.0f; };
+  ls.min_t_end_s = 1.5;
   v.push_back(ls);
   Scenario cl{"clamp-loss", "100 N m; the controller's CtrlCmd is lost for 200 ms at 1 s", 2.5,
               [](double) { return 100.0f; }};
   cl.link_loss_start_s = 1.0;
   cl.link_loss_end_s = 1.2;
+  cl.min_t_end_s = 1.3;
   v.push_back(cl);
   Scenario lf{"lost-frames",
               "100 N m; two CtrlCmd lost at 0.5 s, a Step request at 0.8 s, a PlantStatus at 1.0 s, a PlantSpeeds at "
@@ -72,21 +86,25 @@ std::vector<Scenario> scenarios() {
   lf.faults.lost_step_period = 80;
   lf.faults.lost_status_period = 100;
   lf.faults.lost_speeds_period = 120;
+  lf.min_t_end_s = 1.3;
   v.push_back(lf);
   Scenario fz{"frozen-controller", "100 N m; the controller hangs at 1 s for 300 ms, its CAN driver repeating its last frame",
               2.0, [](double) { return 100.0f; }};
   fz.faults.freeze_start_s = 1.0;
   fz.faults.freeze_end_s = 1.3;
+  fz.min_t_end_s = 1.4;
   v.push_back(fz);
   Scenario rb{"controller-restart", "100 N m; the controller restarts at 1 s, its E2E counter from 0", 1.5,
               [](double) { return 100.0f; }};
   rb.faults.reboot_s = 1.0;
+  rb.min_t_end_s = 1.1;
   v.push_back(rb);
   Scenario fl{"controller-flood", "100 N m; for 100 ms at 1 s the controller sends 20 CtrlCmd per 10 ms period", 1.5,
               [](double) { return 100.0f; }};
   fl.faults.flood_start_s = 1.0;
   fl.faults.flood_end_s = 1.1;
   fl.faults.flood_frames = 20;
+  fl.min_t_end_s = 1.2;
   v.push_back(fl);
   return v;
 }

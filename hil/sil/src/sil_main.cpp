@@ -1,7 +1,8 @@
-// cvtplant-sil: the SIL harness (docs/sil.md#scenarios). It plays two nodes
-// on the bus, each with its own socket: the Harness (SimCtrl lock-step
-// requests, HarnessLoad) and the example Controller (hil/controller). For
-// each scenario it resets the bridge, runs the closed loop in 10 ms
+// cvtplant-sil: the SIL harness (docs/sil.md#scenarios). It plays the
+// scenarios on the bus against a plant and a controller under test: the
+// example controller run in-process on its own socket, or a controller of
+// the user's own on the bus (--controller external, docs/sil.md#external-lockstep).
+// For each scenario it resets the plant, runs the closed loop in 10 ms
 // lock-step periods (the ratio scenarios also in real time, the bridge
 // pacing the plant), checks the pass/fail criteria and writes a CSV trace;
 // all results go to one JUnit XML file. `bench` measures lock-step round
@@ -18,7 +19,9 @@
 #include <vector>
 
 #include "cvtplant/port/socketcan_transport.hpp"
+#include "cvtplant/sil/harness/child_process.hpp"
 #include "cvtplant/sil/harness/example_controller.hpp"
+#include "cvtplant/sil/harness/external_controller.hpp"
 #include "cvtplant/sil/harness/report.hpp"
 #include "cvtplant/sil/harness/runner.hpp"
 
@@ -27,35 +30,66 @@ namespace {
 using namespace cvt::sil::harness;
 
 const char kUsage[] =
-    "usage: cvtplant-sil run   [--iface NAME|--loopback] [--scenario NAME|all] [--out DIR] [--junit FILE] [--safety X]\n"
-    "                          [--reply-timeout-ms T] [--mode lockstep|realtime|both]\n"
-    "                          [--loopback-frame-cost-us US]\n"
+    "usage: cvtplant-sil run   [--iface NAME|--loopback] [--scenario NAME[,NAME...]|all] [--out DIR] [--junit FILE]\n"
+    "                          [--mode lockstep|realtime|both] [--t-end S] [--reply-timeout-ms T]\n"
+    "                          [--controller example|external] [--controller-cmd CMD] [--controller-timeout-ms T]\n"
+    "                          [--plant-cmd CMD] [--safety X] [--loopback-frame-cost-us US]\n"
     "       cvtplant-sil bench [--iface NAME|--loopback] [--steps N] [--with-controller] [--reply-timeout-ms T]\n"
-    "Drives cvtplant-bridge with the example controller over SocketCAN.\n"
-    "  --iface NAME        interface (default vcan0)\n"
-    "  --loopback          no SocketCAN: the bridge runs in-process on the loopback bus\n"
-    "  --scenario NAME     ratio-sweep, kick-down, slip-recovery, tip-in, load-step, clamp-loss,\n"
-    "                      lost-frames, frozen-controller, controller-restart, controller-flood\n"
-    "                      or all (default all)\n"
+    "Plays the SIL scenarios against a plant on a CAN bus and a controller under test,\n"
+    "judges their criteria and writes CSV traces and a JUnit report (docs/sil.md).\n"
+    "  --iface NAME        SocketCAN interface (default vcan0): vcan0, or a real one (can0)\n"
+    "  --loopback          no SocketCAN: the bridge and the example controller run in-process\n"
+    "                      on the loopback bus\n"
+    "  --scenario NAMES    ratio-sweep, kick-down, slip-recovery, tip-in, load-step, clamp-loss,\n"
+    "                      lost-frames, frozen-controller, controller-restart, controller-flood,\n"
+    "                      a comma-separated list of them, or all (default all)\n"
     "  --mode M            lockstep (default): the harness steps the plant; realtime: the ratio\n"
     "                      scenarios with the bridge pacing the plant at 1 kHz (on the wall clock;\n"
     "                      with --loopback on a virtual clock); both: each scenario in lock-step,\n"
     "                      a ratio scenario then again in real time. A real-time run whose plant\n"
     "                      overran more than 1 % of its frames reports the motion criteria as skipped\n"
+    "  --t-end S           cut every scenario at S s of simulated time (at least each scenario's\n"
+    "                      shortest run that still judges every criterion; an end-stop criterion\n"
+    "                      beyond the cut is reported as not judged)\n"
+    "  --controller C      example (default): the example controller, run by the harness;\n"
+    "                      external: a controller on the bus (docs/sil.md#external-lockstep): each\n"
+    "                      period the harness sends HarnessDemand and waits for its CtrlCmd\n"
+    "                      (and CtrlShiftCmd) before the Step. Not the scenarios whose faults\n"
+    "                      are inside the controller (clamp-loss, lost-frames, frozen-controller,\n"
+    "                      controller-restart, controller-flood: all leaves them out)\n"
+    "  --controller-cmd CMD  start CMD (sh -c) as the external controller for the runs and stop\n"
+    "                      it after them, its output into DIR/controller.log; implies\n"
+    "                      --controller external\n"
+    "  --controller-timeout-ms T  lock-step: how long to wait for the controller's commands of a\n"
+    "                      period (default 1000; the first period of a run waits at least 10 s)\n"
+    "  --plant-cmd CMD     start CMD (sh -c) as the plant, e.g. 'cvtplant-bridge --iface vcan0',\n"
+    "                      wait until it answers (30 s at most) and stop it after the runs; its\n"
+    "                      output into DIR/plant.log\n"
     "  --loopback-frame-cost-us US  real time on the loopback bus: each plant frame's work takes US us\n"
     "                      of virtual time (default 0; above 1000 the plant cannot keep time)\n"
     "  --reply-timeout-ms T  send a request again when its answer is not complete after T ms\n"
     "                      (default 1000; 20 with --loopback, whose answers are immediate)\n"
     "  --out DIR           per-scenario CSV traces (default .)\n"
     "  --junit FILE        JUnit XML report of every criterion\n"
-    "  --safety X          override the controller's safety factor (default 1.3)\n"
+    "  --safety X          the example controller's safety factor (default 1.3)\n"
     "  --steps N           bench: lock-step round trips (default 5000)\n"
     "  --with-controller   bench: a CtrlCmd from the controller before each Step\n"
-    "Exit status: 0 all criteria passed, 1 a criterion failed or the bridge did not answer, 2 bad command line.\n";
+    "Exit status: 0 all criteria passed, 1 a criterion failed or the plant did not answer, 2 bad command line.\n";
 
 [[noreturn]] void bad_usage(const std::string& msg) {
   std::fprintf(stderr, "cvtplant-sil: %s (see --help)\n", msg.c_str());
   std::exit(2);
+}
+
+double number(const std::string& flag, const std::string& v, double lo, double hi) {
+  char* end = nullptr;
+  const double d = std::strtod(v.c_str(), &end);
+  if (end == v.c_str() || *end != '\0' || !(d >= lo && d <= hi)) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%s: expected %g..%g, got '", flag.c_str(), lo, hi);
+    bad_usage(buf + v + "'");
+  }
+  return d;
 }
 
 }  // namespace
@@ -68,10 +102,12 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (cmd != "run" && cmd != "bench") bad_usage("unknown subcommand '" + cmd + "'");
-  std::string iface = "vcan0", scenario = "all", out_dir = ".", junit, mode = "lockstep";
+  std::string iface = "vcan0", scenario = "all", out_dir = ".", junit, mode = "lockstep", controller = "example";
+  std::string controller_cmd, plant_cmd;
   long steps = 5000;
-  bool with_controller = false, loopback = false;
+  bool with_controller = false, loopback = false, safety_given = false;
   double reply_timeout_ms = 0;  // 0: the default for the transport
+  double t_end_s = 0, controller_timeout_ms = 1000;
   std::int64_t frame_cost_ns = 0;
   cvtctl::ClampLawParams law;
   for (int i = 2; i < argc; ++i) {
@@ -84,49 +120,97 @@ int main(int argc, char** argv) {
       (a == "--loopback" ? loopback : with_controller) = true;
       continue;
     }
-    if (a != "--iface" && a != "--scenario" && a != "--out" && a != "--junit" && a != "--safety" && a != "--steps" &&
-        a != "--reply-timeout-ms" && a != "--mode" && a != "--loopback-frame-cost-us")
-      bad_usage("unknown option '" + a + "'");
+    static const char* const kValueFlags[] = {
+        "--iface", "--scenario", "--out", "--junit", "--safety", "--steps", "--reply-timeout-ms", "--mode",
+        "--loopback-frame-cost-us", "--controller", "--controller-cmd", "--controller-timeout-ms", "--plant-cmd",
+        "--t-end"};
+    bool known = false;
+    for (const char* k : kValueFlags) known = known || a == k;
+    if (!known) bad_usage("unknown option '" + a + "'");
     if (i + 1 >= argc) bad_usage(a + ": missing value");
     const std::string v = argv[++i];
-    char* end = nullptr;
     if (a == "--iface") iface = v;
     else if (a == "--scenario") scenario = v;
     else if (a == "--out") out_dir = v;
     else if (a == "--junit") junit = v;
-    else if (a == "--loopback-frame-cost-us") {
-      const double us = std::strtod(v.c_str(), &end);
-      if (end == v.c_str() || *end != '\0' || !(us >= 0 && us <= 100000))
-        bad_usage("--loopback-frame-cost-us: expected 0..100000, got '" + v + "'");
-      frame_cost_ns = static_cast<std::int64_t>(us * 1e3 + 0.5);
-    } else if (a == "--mode") {
+    else if (a == "--controller-cmd") controller_cmd = v;
+    else if (a == "--plant-cmd") plant_cmd = v;
+    else if (a == "--loopback-frame-cost-us") frame_cost_ns = static_cast<std::int64_t>(number(a, v, 0, 100000) * 1e3 + 0.5);
+    else if (a == "--mode") {
       mode = v;
       if (mode != "lockstep" && mode != "realtime" && mode != "both")
         bad_usage("--mode: expected lockstep, realtime or both, got '" + v + "'");
-    }
-    else if (a == "--safety") {
+    } else if (a == "--controller") {
+      controller = v;
+      if (controller != "example" && controller != "external")
+        bad_usage("--controller: expected example or external, got '" + v + "'");
+    } else if (a == "--safety") {
+      char* end = nullptr;
       law.safety = std::strtof(v.c_str(), &end);
       if (end == v.c_str() || *end != '\0' || !(law.safety > 0.1f && law.safety < 10.0f))
         bad_usage("--safety: expected a number in (0.1, 10), got '" + v + "'");
-    } else if (a == "--reply-timeout-ms") {
-      reply_timeout_ms = std::strtod(v.c_str(), &end);
-      if (end == v.c_str() || *end != '\0' || !(reply_timeout_ms >= 1 && reply_timeout_ms <= 10000))
-        bad_usage("--reply-timeout-ms: expected 1..10000, got '" + v + "'");
-    } else if (a == "--steps") {
-      steps = std::strtol(v.c_str(), &end, 10);
-      if (end == v.c_str() || *end != '\0' || steps < 1 || steps > 10000000)
-        bad_usage("--steps: expected 1..10000000, got '" + v + "'");
-    }
+      safety_given = true;
+    } else if (a == "--reply-timeout-ms") reply_timeout_ms = number(a, v, 1, 10000);
+    else if (a == "--controller-timeout-ms") controller_timeout_ms = number(a, v, 1, 600000);
+    else if (a == "--t-end") t_end_s = number(a, v, 0.01, 1e5);
+    else if (a == "--steps") steps = static_cast<long>(number(a, v, 1, 10000000));
   }
+  if (!controller_cmd.empty()) controller = "external";
+  const bool external = controller == "external";
+  if (external && loopback)
+    bad_usage("--controller external: needs a CAN interface (--iface): the controller is another program");
+  if (external && safety_given) bad_usage("--safety: sets the example controller's margin, not an external one's");
+  if (external && cmd == "bench") bad_usage("bench: runs the example controller only");
+  if (loopback && !plant_cmd.empty()) bad_usage("--plant-cmd: the loopback bus has its plant in this process");
+
+  // The chosen scenarios, in the table's order; an external controller
+  // cannot show the faults inside a controller (with all: left out).
   std::vector<Scenario> chosen;
-  for (const Scenario& s : scenarios())
-    if (scenario == "all" || scenario == s.name) chosen.push_back(s);
-  if (chosen.empty()) bad_usage("--scenario: expected " + scenario_names() + ", got '" + scenario + "'");
+  std::vector<std::string> names;
+  for (std::size_t p = 0; p <= scenario.size();) {
+    const std::size_t q = scenario.find(',', p);
+    names.push_back(scenario.substr(p, q == std::string::npos ? std::string::npos : q - p));
+    p = q == std::string::npos ? scenario.size() + 1 : q + 1;
+  }
+  ExternalOptions ext_opt;
+  ext_opt.answer_timeout_ns = static_cast<std::int64_t>(controller_timeout_ms * 1e6);
+  for (const std::string& n : names) {
+    bool found = false;
+    for (const Scenario& s : scenarios()) found = found || n == "all" || n == s.name;
+    if (!found || n.empty()) bad_usage("--scenario: expected " + scenario_names() + ", got '" + n + "'");
+  }
+  std::vector<std::string> left_out;
+  for (const Scenario& s : scenarios()) {
+    bool want = false;
+    for (const std::string& n : names) want = want || n == "all" || n == s.name;
+    if (!want) continue;
+    std::string why;
+    if (external && !ExternalController::accepts(s, why)) {
+      if (scenario == "all") {
+        left_out.push_back(s.name);
+        continue;
+      }
+      bad_usage("--controller external: " + why);
+    }
+    Scenario c = s;
+    if (t_end_s > 0 && t_end_s < c.t_end_s) {
+      if (t_end_s < c.min_t_end_s) {
+        char buf[200];
+        std::snprintf(buf, sizeof buf, "--t-end: %s needs at least %.1f s to judge its criteria, got %g", s.name,
+                      c.min_t_end_s, t_end_s);
+        bad_usage(buf);
+      }
+      c.t_end_s = t_end_s;
+    }
+    chosen.push_back(c);
+  }
   // Real time runs the ratio scenarios (docs/sil.md#ratio-realtime); the
   // fault scenarios need the harness's control of every step.
   const bool lockstep_runs = mode != "realtime", realtime_runs = mode != "lockstep";
-  if (mode == "realtime" && scenario != "all" && !chosen.front().ratio_target)
-    bad_usage("--mode realtime: runs ratio-sweep, kick-down or slip-recovery, not '" + scenario + "'");
+  if (mode == "realtime" && scenario != "all")
+    for (const Scenario& s : chosen)
+      if (!s.ratio_target)
+        bad_usage("--mode realtime: runs ratio-sweep, kick-down or slip-recovery, not '" + std::string(s.name) + "'");
   if (frame_cost_ns > 0 && (!loopback || !realtime_runs))
     bad_usage("--loopback-frame-cost-us: needs --loopback and --mode realtime or both");
   if (reply_timeout_ms == 0) reply_timeout_ms = loopback ? 20 : 1000;
@@ -139,8 +223,9 @@ int main(int argc, char** argv) {
     return 1;
   }
 
-  // Three nodes on one bus: the plant (in-process only with --loopback),
-  // harness and controller, each with its own transport.
+  // The nodes: the plant (in-process only with --loopback), the harness and
+  // the controller port, each with its own transport: the example
+  // controller's socket, or the harness's port for an external controller.
   std::unique_ptr<InProcessBus> loop;
   std::unique_ptr<PlantUnderTest> plant;
   cvt::port::SocketCanTransport harness_sock, controller_sock;
@@ -161,39 +246,81 @@ int main(int argc, char** argv) {
     harness_bus = &harness_sock;
     controller_bus = &controller_sock;
   }
+  ChildProcess plant_proc, controller_proc;
+  if (!plant_cmd.empty() && !plant_proc.start(plant_cmd, out_dir + "/plant.log")) {
+    std::fprintf(stderr, "cvtplant-sil: --plant-cmd: %s\n", plant_proc.error().c_str());
+    return 1;
+  }
   // The harness's transport through a fault injector, which the fault
   // scenarios arm (docs/sil.md#fault-scenarios); otherwise it passes frames.
   FaultInjector harness_faults(*harness_bus);
   HarnessNode h(harness_faults, static_cast<std::int64_t>(reply_timeout_ms * 1e6), plant->idle());
+  // A plant this harness started may take a while to open its socket.
+  if (!h.sync(plant_cmd.empty() ? 5 : 30)) {
+    const std::string why = plant_cmd.empty() || plant_proc.running() ? "" : " (--plant-cmd: " + plant_proc.ended() + ")";
+    std::fprintf(stderr, "cvtplant-sil: the plant on %s does not answer SimCtrl%s\n",
+                 loopback ? "loopback" : iface.c_str(), why.c_str());
+    return 1;
+  }
   // --safety sets the clamping margin of both laws (ClampLaw, RatioLaw).
   cvtctl::RatioLawParams ratio_law;
   ratio_law.clamp = law;
-  ExampleController ctl(*controller_bus, law, ratio_law);
-  if (!h.sync()) {
-    std::fprintf(stderr, "cvtplant-sil: the bridge on %s does not answer SimCtrl\n", loopback ? "loopback" : iface.c_str());
+  std::unique_ptr<ControllerUnderTest> ctl;
+  ExampleController* example = nullptr;
+  if (external) {
+    ctl = std::make_unique<ExternalController>(*controller_bus, ext_opt);
+  } else {
+    auto e = std::make_unique<ExampleController>(*controller_bus, law, ratio_law);
+    example = e.get();
+    ctl = std::move(e);
+  }
+  if (cmd == "bench") return bench(h, with_controller ? &example->node() : nullptr, steps);
+  if (!controller_cmd.empty() && !controller_proc.start(controller_cmd, out_dir + "/controller.log")) {
+    std::fprintf(stderr, "cvtplant-sil: --controller-cmd: %s\n", controller_proc.error().c_str());
     return 1;
   }
-  if (cmd == "bench") return bench(h, with_controller ? &ctl.node() : nullptr, steps);
+  for (const std::string& n : left_out)
+    std::printf("not run: %s (its faults are inside the controller: the example controller only)\n", n.c_str());
+  if (external && !static_cast<ExternalController&>(*ctl).wait_ready()) {
+    const std::string why =
+        controller_cmd.empty() || controller_proc.running() ? "" : " (--controller-cmd: " + controller_proc.ended() + ")";
+    std::fprintf(stderr, "cvtplant-sil: no controller answered HarnessDemand on %s within 10 s%s\n", iface.c_str(),
+                 why.c_str());
+    if (!controller_cmd.empty()) controller_proc.stop();
+    if (!plant_cmd.empty()) plant_proc.stop();
+    return 1;
+  }
 
   // Real-time pacing: the bridge process on the wall clock, or the
   // in-process bridge one frame per virtual millisecond.
   const RealTimeBus rt_bus = plant->realtime();
   RunConfig cfg;
   cfg.out_dir = out_dir;
-  cfg.capacity = law;
   std::vector<ScenarioResult> results;
   bool all_pass = true;
   for (const Scenario& s : chosen) {
     if (lockstep_runs) {
-      results.push_back(run_lockstep(s, h, harness_faults, ctl, cfg));
+      results.push_back(run_lockstep(s, h, harness_faults, *ctl, cfg));
       all_pass = all_pass && results.back().pass();
       print_result(results.back(), s.what);
     }
     if (realtime_runs && s.ratio_target) {
-      results.push_back(run_realtime(s, h, ctl, cfg, rt_bus));
+      results.push_back(run_realtime(s, h, *ctl, cfg, rt_bus));
       all_pass = all_pass && results.back().pass();
       print_result(results.back(), s.what);
     }
+  }
+  // A started controller that ended before the runs did is reported.
+  if (!controller_cmd.empty()) {
+    const bool was_running = controller_proc.running();
+    const std::string how = controller_proc.stop();
+    const std::string said = was_running ? "ran through every run, stopped" : "ended by itself before the end, " + how;
+    std::printf("controller (%s): %s; its output in %s/controller.log\n", controller_cmd.c_str(), said.c_str(),
+                out_dir.c_str());
+  }
+  if (!plant_cmd.empty()) {
+    const std::string how = plant_proc.stop();
+    std::printf("plant (%s): %s; its output in %s/plant.log\n", plant_cmd.c_str(), how.c_str(), out_dir.c_str());
   }
   if (!junit.empty() && !write_junit(junit, results)) {
     std::fprintf(stderr, "cvtplant-sil: --junit %s: %s\n", junit.c_str(), std::strerror(errno));

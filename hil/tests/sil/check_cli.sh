@@ -36,11 +36,22 @@ expect 2 "$SIL" run --loopback --mode realtime --loopback-frame-cost-us -1
 expect 2 "$SIL" run --mode realtime --loopback-frame-cost-us 1500
 expect 2 "$SIL" run --loopback --loopback-frame-cost-us 1500
 expect 2 "$SIL" bench --steps 0
+expect 2 "$SIL" run --controller ecu
+expect 2 "$SIL" run --loopback --controller external
+expect 2 "$SIL" run --controller external --scenario clamp-loss
+expect 2 "$SIL" run --controller external --safety 1.5
+expect 2 "$SIL" run --controller-timeout-ms 0
+expect 2 "$SIL" run --t-end 2 --scenario ratio-sweep
+expect 2 "$SIL" run --scenario tip-in,nope
+expect 2 "$SIL" run --scenario tip-in,
+expect 2 "$SIL" run --loopback --plant-cmd true
+expect 2 "$SIL" bench --controller external
 expect 1 "$SIL" run --iface nosuchcan0
 # An output directory that cannot be made is an error, not missing traces.
 expect 1 "$SIL" run --loopback --scenario tip-in --out /proc/cvtplant-no-such-dir
 expect 0 "$CONTROLLER" --help
 expect 2 "$CONTROLLER" --bogus
+expect 2 "$CONTROLLER" --lockstep --demand-Nm
 expect 2 "$CONTROLLER" --demand-Nm 900
 expect 2 "$CONTROLLER" --schedule sometimes
 expect 2 "$CONTROLLER" --ratio-steps 0:1.5,0.5

@@ -47,6 +47,9 @@ from e2e_profile1 import p01_crc  # noqa: E402
 
 # Sent together, in this order, just before PlantStatus (docs/can.md#layout).
 DIAG = ("PlantDiag", "PlantBusDiag", "PlantCmdDiag")
+# The published parameters follow them when due (docs/sil.md#published-parameters);
+# the two maps only from a variable-ratio plant.
+PARAMS = ("PlantParams", "PlantRatioMap", "PlantThrustMap")
 
 
 class Peer:
@@ -147,12 +150,13 @@ class Peer:
         if g is None:
             return
         st = g["PlantStatus"]
-        order = [n for n in g["_order"] if n not in DIAG][-4:]
+        order = [n for n in g["_order"] if n not in DIAG + PARAMS][-4:]
         if order != ["PlantSpeeds", "PlantRatio", "PlantForces", "PlantStatus"]:
             self.fail("group order %s" % g["_order"])
-        diag = [n for n in g["_order"][-4:] if n in DIAG]
-        if diag and diag != list(DIAG):
-            self.fail("diagnostics %s, expected %s before PlantStatus" % (diag, list(DIAG)))
+        # Between PlantForces and PlantStatus: [the diagnostics] [PlantParams].
+        tail = g["_order"][g["_order"].index("PlantForces") + 1:-1]
+        if tail not in ([], list(DIAG), ["PlantParams"], list(DIAG) + ["PlantParams"]):
+            self.fail("%s before PlantStatus, expected [%s] [PlantParams]" % (tail, ", ".join(DIAG)))
         tags = {int(g[n]["sample_tag"]) for n in ("PlantSpeeds", "PlantRatio", "PlantForces", "PlantStatus")}
         if len(tags) != 1:
             self.fail("sample tags differ: %s" % tags)

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <vector>
 
+#include "cvtctl/ratio_law.hpp"
 #include "cvtplant/port/loopback_transport.hpp"
 #include "cvtplant/sil/bridge.hpp"
 
@@ -79,6 +80,10 @@ struct Group {
   can::PlantDiag diag;
   can::PlantBusDiag bus_diag;
   can::PlantCmdDiag cmd_diag;
+  bool has_params = false, has_maps = false;
+  can::PlantParams params;
+  can::PlantRatioMap ratio_map;
+  can::PlantThrustMap thrust_map;
 };
 
 // Reads one output group and decodes it with a fresh, independent decoder.
@@ -103,6 +108,22 @@ Group read_group(port::CanTransport& node) {
         REQUIRE(g.frames.size() >= 2);
         REQUIRE(g.frames[g.frames.size() - 2].id == can::PlantBusDiag::kId);
         g.cmd_diag = a.plant_cmd_diag;
+        break;
+      // The published parameters, after the diagnostics when both are due
+      // (docs/sil.md#published-parameters); the maps only with a variable ratio.
+      case can::MessageId::PlantParams:
+        REQUIRE((!g.has_diag || g.frames[g.frames.size() - 2].id == can::PlantCmdDiag::kId));
+        g.has_params = true;
+        g.params = a.plant_params;
+        break;
+      case can::MessageId::PlantRatioMap:
+        REQUIRE(g.frames[g.frames.size() - 2].id == can::PlantParams::kId);
+        g.ratio_map = a.plant_ratio_map;
+        break;
+      case can::MessageId::PlantThrustMap:
+        REQUIRE(g.frames[g.frames.size() - 2].id == can::PlantRatioMap::kId);
+        g.has_maps = true;
+        g.thrust_map = a.plant_thrust_map;
         break;
       case can::MessageId::PlantStatus: g.status = a.plant_status; return g;
       default: FAIL("unexpected message from the bridge");
@@ -933,4 +954,100 @@ TEST_CASE("variable ratio: PlantShift in the group, CtrlShiftCmd sets the driven
   const double after = rig.bridge.driven_command();
   CHECK(after > before);
   CHECK(after <= before + 100 * 50.0 + 1.0);
+}
+
+TEST_CASE("published parameters: in every Reset and None answer and once per second, values from the scene") {
+  // docs/sil.md#published-parameters. Fixed ratio (tip-in): PlantParams alone.
+  {
+    Rig rig;
+    rig.peer.request(can::SimRequest::Reset, 0, can::SceneId::TipIn);
+    rig.bridge.service(0);
+    Group g = read_group(rig.bus.node(1));
+    REQUIRE(g.has_params);
+    CHECK(!g.has_maps);
+    CHECK(!g.params.variable_ratio);
+    const RomParams& p = find_builtin_scene("tip-in")->params;
+    // 2 f mu0 / cos(beta0) with the seed's mu0 = 0.25 and 15 degrees, f = 1:
+    // 0.517638; the signal's LSB is 2e-5.
+    CHECK(p.normal_load_factor == 1.0);
+    CHECK(std::fabs(g.params.capacity_coeff - 2.0 * p.friction.mu0 / std::cos(p.beta0_rad)) <= 1e-5);
+    CHECK(std::fabs(g.params.capacity_coeff - 0.517638) <= 1e-5);
+    CHECK(std::fabs(g.params.radius_driver_m - p.r1_m) <= 5e-6);
+    CHECK(g.params.clamp_max_N == static_cast<float>(p.clamp_max_N));
+    // Steps inside a second: none; the step crossing 1 s: again.
+    int with_params = 0;
+    for (int k = 0; k < 100; ++k) with_params += rig.step(10).has_params ? 1 : 0;
+    CHECK(with_params == 1);
+    CHECK(rig.query().has_params);
+  }
+  // Variable ratio: the ratio and thrust-ratio maps at the stops and set-up.
+  Rig rig("ratio-control");
+  rig.peer.request(can::SimRequest::None);
+  rig.bridge.service(0);
+  const Group g = read_group(rig.bus.node(1));
+  REQUIRE(g.has_params);
+  REQUIRE(g.has_maps);
+  CHECK(g.params.variable_ratio);
+  const RomParams& p = find_builtin_scene("ratio-control")->params;
+  const double C = p.center_distance_m, t = p.radial_travel_m;
+  // The plant's cubic for r2(rho) is fitted to the exact geometry (the
+  // chain length held) at rho = 0, +-travel/2, +-travel (docs/rom.md#wedging):
+  // at the stops the ratios agree with the geometry's to 2e-4.
+  CHECK(std::fabs(g.ratio_map.ratio_setup - p.r2_m / p.r1_m) <= 5e-5);
+  CHECK(std::fabs(g.ratio_map.ratio_overdrive_stop - seed::driven_pitch_radius_m(p.r1_m, p.r2_m, C, t) / (p.r1_m + t)) <=
+        2e-4);
+  CHECK(std::fabs(g.ratio_map.ratio_underdrive_stop -
+                  seed::driven_pitch_radius_m(p.r1_m, p.r2_m, C, -t) / (p.r1_m - t)) <= 2e-4);
+  // The thrust ratio at rest is theta1 / theta2 (the wrap angles) to 1e-2
+  // (docs/rom.md#wedging); at set-up exactly the cubic's -a1.
+  const double th1 = seed::wrap_angle_driver_rad(p.r1_m, p.r2_m, C);
+  CHECK(std::fabs(g.thrust_map.thrust_ratio_setup - th1 / (2.0 * 3.14159265358979 - th1)) <= 1e-2);
+  CHECK(g.thrust_map.thrust_ratio_overdrive_stop > g.thrust_map.thrust_ratio_setup);
+  CHECK(g.thrust_map.thrust_ratio_setup > g.thrust_map.thrust_ratio_underdrive_stop);
+  // The example controller's calibration map holds the exact geometry's
+  // wrap-angle ratio (hil/controller/include/cvtctl/ratio_law.hpp); the
+  // plant's cubic agrees with it to 1.1e-3 at the stops.
+  MESSAGE("ratio-control publishes: capacity_coeff ", g.params.capacity_coeff, ", r1 ", g.params.radius_driver_m,
+          " m, clamp max ", g.params.clamp_max_N, " N; ratios ", g.ratio_map.ratio_overdrive_stop, ", ",
+          g.ratio_map.ratio_setup, ", ", g.ratio_map.ratio_underdrive_stop, "; thrust ratios ",
+          g.thrust_map.thrust_ratio_overdrive_stop, ", ", g.thrust_map.thrust_ratio_setup, ", ",
+          g.thrust_map.thrust_ratio_underdrive_stop);
+  const cvtctl::ThrustMap map;
+  CHECK(std::fabs(g.ratio_map.ratio_overdrive_stop - map.ratio[0]) <= 3e-4);
+  CHECK(std::fabs(g.ratio_map.ratio_underdrive_stop - map.ratio[4]) <= 3e-4);
+  CHECK(std::fabs(g.thrust_map.thrust_ratio_overdrive_stop - map.kappa[0]) <= 1.5e-3);
+  CHECK(std::fabs(g.thrust_map.thrust_ratio_setup - map.kappa[2]) <= 2e-4);
+  CHECK(std::fabs(g.thrust_map.thrust_ratio_underdrive_stop - map.kappa[4]) <= 1.5e-3);
+}
+
+TEST_CASE("clamping supply: the actuators deliver HarnessLoad.clamp_supply_factor of each command; 1 again on its timeout") {
+  Rig rig;
+  auto supply = [&](float factor) {
+    can::HarnessLoad m;
+    m.clamp_supply_factor = factor;
+    can::CanFrame f;
+    REQUIRE(rig.peer.load.encode(m, f) == can::CodecStatus::Ok);
+    REQUIRE(rig.peer.node.send(f) == CanIoStatus::Ok);
+  };
+  Group g;
+  for (int k = 0; k < 30; ++k) {
+    rig.peer.send_cmd(8000.0f, 50.0f);
+    g = rig.step(10);
+  }
+  CHECK(std::fabs(g.forces.driver_axial_force_N - 8000.0f) < 150.0f);
+  // A quarter of the supply: the actuator (20 ms lag) settles at 2 kN.
+  for (int k = 0; k < 30; ++k) {
+    rig.peer.send_cmd(8000.0f, 50.0f);
+    supply(0.25f);
+    g = rig.step(10);
+  }
+  CHECK(std::fabs(g.forces.driver_axial_force_N - 2000.0f) < 100.0f);
+  CHECK(!g.status.fault_load_timeout);
+  // The harness stops sending: after 50 ms the Replace reaction, full supply.
+  for (int k = 0; k < 30; ++k) {
+    rig.peer.send_cmd(8000.0f, 50.0f);
+    g = rig.step(10);
+  }
+  CHECK(rig.bridge.load_timeouts() == 1);
+  CHECK(std::fabs(g.forces.driver_axial_force_N - 8000.0f) < 150.0f);
 }

@@ -37,6 +37,7 @@ void visit_mbd_params(P& p, V&& v) {
   v(ParamField{"bolt_length_m", "m"}, p.bolt_length_m);
   v(ParamField{"joint_stiffness_N_m", "N/m"}, p.joint_stiffness_N_m);
   v(ParamField{"joint_damping_Ns_m", "N.s/m"}, p.joint_damping_Ns_m);
+  v(ParamField{"joint_rot_damping_Nms_rad", "N.m.s/rad"}, p.joint_rot_damping_Nms_rad);
   v(ParamField{"r1_m", "m"}, p.r1_m);
   v(ParamField{"r2_m", "m"}, p.r2_m);
   v(ParamField{"links", "1"}, p.links);
@@ -73,6 +74,9 @@ void visit_mbd_params(P& p, V&& v) {
     start(ParamField{"spinup_s", "s"}, p.start.spinup_s);
     start(ParamField{"hold_s", "s"}, p.start.hold_s);
   }
+  v(ParamField{"start_r1_m", "m"}, p.start_r1_m);
+  v(ParamField{"start_ratio_lock", ""}, p.start_ratio_lock);
+  v(ParamField{"tolerance_link_rate_rad_s", "rad/s"}, p.tolerance_link_rate_rad_s);
 }
 
 // The same for RunOptions; max_steps is a cap (it ends a run, it does not

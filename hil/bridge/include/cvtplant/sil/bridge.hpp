@@ -176,7 +176,7 @@ class Bridge {
     const long n = plant_.frames();
     if (n % fast_cycle_frames_ == 0) {
       const bool slow_due = n % slow_cycle_frames_ == 0;
-      send_group(0, slow_due, slow_due);
+      send_group(0, slow_due, n % params_cycle_frames_ == 0, slow_due);
     }
   }
 
@@ -252,8 +252,11 @@ class Bridge {
     rxbank_.reset(can::MessageId::CtrlShiftCmd);
     const std::int64_t cycle_ns = std::int64_t{can::PlantSpeeds::kCycleTime_ms} * 1000000;
     const std::int64_t slow_ns = std::int64_t{can::PlantStatus::kCycleTime_ms} * 1000000;
+    const std::int64_t params_ns = std::int64_t{can::PlantParams::kCycleTime_ms} * 1000000;
     fast_cycle_frames_ = cycle_ns / plant_.frame_ns() < 1 ? 1 : cycle_ns / plant_.frame_ns();
     slow_cycle_frames_ = slow_ns / plant_.frame_ns() < 1 ? 1 : slow_ns / plant_.frame_ns();
+    params_cycle_frames_ = params_ns / plant_.frame_ns() < 1 ? 1 : params_ns / plant_.frame_ns();
+    params_ = published_params(*plant_.scene());
   }
 
   // Deadlines run on simulated time in lock-step and on the host clock in
@@ -327,8 +330,13 @@ class Bridge {
     if (shift_state_ == CmdState::TimedOut && cmd_reaction_ == CmdTimeoutReaction::Dbc)
       shift_ = can::rx_timeout_ramp(shift_, static_cast<float>(static_cast<double>(plant_.frame_ns()) * 1e-9));
     cmd_unused_ = false;
-    plant_.set_driven_clamp_command(driven_command());
-    if (plant_.step(current_inputs()) != RomFault::none) mode_ = can::PlantMode::Fault;
+    // The actuators deliver the supply's fraction of each clamping command
+    // (HarnessLoad.clamp_supply_factor, 1 unless the harness lowers it).
+    const double supply = load_.clamp_supply_factor;
+    plant_.set_driven_clamp_command(driven_command() * supply);
+    RomInputs<double> u = current_inputs();
+    u.clamp_N *= supply;
+    if (plant_.step(u) != RomFault::none) mode_ = can::PlantMode::Fault;
   }
 
   void count_rejection(const can::RxResult& r) {
@@ -352,7 +360,8 @@ class Bridge {
   static bool is_plant_output(std::uint32_t id) {
     return id == can::PlantSpeeds::kId || id == can::PlantRatio::kId || id == can::PlantForces::kId ||
            id == can::PlantStatus::kId || id == can::PlantDiag::kId || id == can::PlantBusDiag::kId ||
-           id == can::PlantCmdDiag::kId || id == can::PlantShift::kId;
+           id == can::PlantCmdDiag::kId || id == can::PlantShift::kId || id == can::PlantParams::kId ||
+           id == can::PlantRatioMap::kId || id == can::PlantThrustMap::kId;
   }
 
   void handle_io(port::CanIoStatus st, const can::CanFrame& f, bool draining) {
@@ -415,7 +424,7 @@ class Bridge {
     if (have_last_seq_ && m.step_seq == last_seq_) {
       ++rx_.requests_resent;
       if (m.sim_request != can::SimRequest::RunRealTime && mode_ != can::PlantMode::RealTime)
-        send_group(m.step_seq, last_group_diag_, true, true);
+        send_group(m.step_seq, last_group_diag_, last_group_params_, true, true);
       return;
     }
     if (m.sim_request == can::SimRequest::Step && (mode_ == can::PlantMode::RealTime || !plant_.loaded())) {
@@ -433,7 +442,7 @@ class Bridge {
           fault_scene_ = false;
           restart();
         }
-        send_group(m.step_seq, true);
+        send_group(m.step_seq, true, true);
         break;
       }
       case can::SimRequest::Step:
@@ -441,20 +450,21 @@ class Bridge {
         steps_requested_ += m.step_count;
         {
           const long before = plant_.frames();
-          bool slow_due = false;
+          bool slow_due = false, params_due = false;
           for (std::uint32_t i = 0; i < m.step_count; ++i) {
             step_one_frame();
             if (plant_.frames() % slow_cycle_frames_ == 0 && plant_.frames() != before) slow_due = true;
+            if (plant_.frames() % params_cycle_frames_ == 0 && plant_.frames() != before) params_due = true;
           }
-          send_group(m.step_seq, slow_due);
+          send_group(m.step_seq, slow_due, params_due);
         }
         break;
       case can::SimRequest::RunRealTime: enter_mode(can::PlantMode::RealTime); break;
       case can::SimRequest::Pause:
         if (mode_ != can::PlantMode::Fault) enter_mode(can::PlantMode::Ready);
-        send_group(m.step_seq, true);
+        send_group(m.step_seq, true, true);
         break;
-      case can::SimRequest::None: send_group(m.step_seq, true); break;
+      case can::SimRequest::None: send_group(m.step_seq, true, true); break;
     }
   }
 
@@ -482,13 +492,14 @@ class Bridge {
   }
 
   // docs/can.md#layout "Output groups": Speeds, Ratio, Forces, [Shift,]
-  // [Diag, BusDiag, CmdDiag,] Status.
+  // [Diag, BusDiag, CmdDiag,] [Params, RatioMap, ThrustMap,] Status.
   // In real time the 100 ms frames (the diagnostics, Status) go out only on
   // every tenth 10 ms group, as the DBC cycle times say; there step_seq_ack
   // is 0 because no request is being acknowledged.
   // A resent group repeats the last group's sample_tag: same sample, the
   // receivers can tell it from a new one.
-  void send_group(std::uint8_t step_seq, bool with_diag, bool with_status = true, bool resend = false) {
+  void send_group(std::uint8_t step_seq, bool with_diag, bool with_params, bool with_status = true,
+                  bool resend = false) {
     const RomOutputs<double> o = plant_.loaded() ? plant_.outputs() : RomOutputs<double>{};
     const auto tag = resend ? last_group_tag_ : static_cast<std::uint8_t>(groups_sent_ & 0x0Fu);
     if (resend) {
@@ -496,6 +507,7 @@ class Bridge {
     } else {
       last_group_tag_ = tag;
       last_group_diag_ = with_diag;
+      last_group_params_ = with_params;
     }
     auto f = [](double v) { return static_cast<float>(v); };
     can::PlantSpeeds sp{tag, f(o.omega1_rad_s), f(o.omega2_rad_s), f(o.torque_transmitted_Nm)};
@@ -541,6 +553,7 @@ class Bridge {
       cd.cmd_superseded = static_cast<std::uint16_t>(rx_.cmd_superseded);
       send(cd, tx_cmd_diag_);
     }
+    if (with_params && plant_.loaded()) send_params();
     if (!with_status) {
       if (!resend) ++groups_sent_;
       return;
@@ -570,6 +583,28 @@ class Bridge {
     if (!resend) ++groups_sent_;
   }
 
+  // docs/sil.md#published-parameters.
+  void send_params() {
+    auto f = [](double v) { return static_cast<float>(v); };
+    can::PlantParams pp;
+    pp.variable_ratio = params_.variable_ratio;
+    pp.capacity_coeff = f(params_.capacity_coeff);
+    pp.radius_driver_m = f(params_.radius_driver_m);
+    pp.clamp_max_N = f(params_.clamp_max_N);
+    send(pp, tx_params_);
+    if (!params_.variable_ratio) return;
+    can::PlantRatioMap rm;
+    rm.ratio_overdrive_stop = f(params_.ratio[0]);
+    rm.ratio_setup = f(params_.ratio[1]);
+    rm.ratio_underdrive_stop = f(params_.ratio[2]);
+    send(rm, tx_ratio_map_);
+    can::PlantThrustMap tm;
+    tm.thrust_ratio_overdrive_stop = f(params_.thrust_ratio[0]);
+    tm.thrust_ratio_setup = f(params_.thrust_ratio[1]);
+    tm.thrust_ratio_underdrive_stop = f(params_.thrust_ratio[2]);
+    send(tm, tx_thrust_map_);
+  }
+
   port::CanTransport& bus_;
   port::Clock& clock_;
   FrameSink* sink_;
@@ -584,6 +619,10 @@ class Bridge {
   can::TxChannel<can::PlantDiag> tx_diag_;
   can::TxChannel<can::PlantBusDiag> tx_bus_diag_;
   can::TxChannel<can::PlantCmdDiag> tx_cmd_diag_;
+  can::TxChannel<can::PlantParams> tx_params_;
+  can::TxChannel<can::PlantRatioMap> tx_ratio_map_;
+  can::TxChannel<can::PlantThrustMap> tx_thrust_map_;
+  PublishedParams params_{};
 
   can::PlantMode mode_ = can::PlantMode::Init;
   CmdTimeoutReaction cmd_reaction_ = CmdTimeoutReaction::Dbc;
@@ -600,7 +639,7 @@ class Bridge {
   bool cmd_unused_ = false;  // a used CtrlCmd no plant frame has applied yet
   std::uint64_t dropped_at_status_ = 0;
   std::int64_t cmd_last_ns_ = 0, load_last_ns_ = 0;
-  long fast_cycle_frames_ = 10, slow_cycle_frames_ = 100;
+  long fast_cycle_frames_ = 10, slow_cycle_frames_ = 100, params_cycle_frames_ = 1000;
 
   bool fault_scene_ = false;
   bool cmd_timeout_since_status_ = false, load_timeout_since_status_ = false;
@@ -610,7 +649,7 @@ class Bridge {
   TxCounts tx_{};
   std::uint64_t cmd_timeouts_ = 0, load_timeouts_ = 0, rt_overruns_ = 0;
   std::uint64_t steps_requested_ = 0, groups_sent_ = 0, groups_resent_ = 0;
-  bool have_last_seq_ = false, last_group_diag_ = false;
+  bool have_last_seq_ = false, last_group_diag_ = false, last_group_params_ = false;
   std::uint8_t last_seq_ = 0, last_group_tag_ = 0;
 };
 

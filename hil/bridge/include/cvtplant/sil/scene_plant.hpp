@@ -7,11 +7,55 @@
 #include <cmath>
 #include <cstdint>
 
+#include "cvtplant/math/detmath.hpp"
+#include "cvtplant/plant/rom_constants.hpp"
+#include "cvtplant/plant/rom_formulas.hpp"
 #include "cvtplant/scene/all_plants.hpp"
 #include "cvtplant/scene/builtin_scenes.hpp"
 #include "cvtplant/scene/scene_runner.hpp"
 
 namespace cvt::sil {
+
+// What the bridge publishes about its plant (PlantParams, PlantRatioMap,
+// PlantThrustMap; docs/sil.md#published-parameters): the values a controller
+// calibrates from, taken from the loaded scene's parameters, so a new
+// parameter set needs no new controller constants.
+struct PublishedParams {
+  bool variable_ratio = false;
+  double capacity_coeff = 0.0;  // tau_cap / (F_ax r1) = 2 f mu0 / cos(beta0)
+  double radius_driver_m = 0.0;
+  double clamp_max_N = 0.0;
+  // Variable ratio: at the overdrive stop, set-up, the underdrive stop.
+  double ratio[3] = {};
+  double thrust_ratio[3] = {};
+};
+
+// docs/sil.md#published-parameters: the torque capacity per clamping force
+// and driver radius is mu0 times the two lumps' normal load per axial force
+// at the set-up half angle (docs/rom.md#contact, #lump-load-split); the ratio
+// map is the chain's radial travel through the plant's own driven-radius
+// cubic (docs/rom.md#wedging), r(rho) = (r2 + dr2(rho)) / (r1 + rho), and the
+// thrust ratio at rest kappa(rho) = -dr2/drho (no-load: the wrap-tension
+// share left out, docs/rom.md#wrap-tension).
+inline PublishedParams published_params(const Scene& s) {
+  const RomParams& p = s.params;
+  PublishedParams q;
+  q.variable_ratio = (s.features & rom_feature::wedging) != 0;
+  const double cos_b0 = dm::cos(p.beta0_rad);
+  q.capacity_coeff = p.friction.mu0 * (lump_load_per_axial(p.entry_load_share, p.normal_load_factor, cos_b0) +
+                                       lump_load_per_axial(1.0 - p.entry_load_share, p.normal_load_factor, cos_b0));
+  q.radius_driver_m = p.r1_m;
+  q.clamp_max_N = p.clamp_max_N;
+  if (q.variable_ratio) {
+    const RomConstants<double, rom_feature::axial | rom_feature::wedging> c(p);
+    const double rho[3] = {p.radial_travel_m, 0.0, -p.radial_travel_m};
+    for (int i = 0; i < 3; ++i) {
+      q.ratio[i] = (p.r2_m + driven_radius_change(rho[i], c.a1, c.a2, c.a3)) / (p.r1_m + rho[i]);
+      q.thrust_ratio[i] = -(c.a1 + rho[i] * (2.0 * c.a2 + rho[i] * 3.0 * c.a3));
+    }
+  }
+  return q;
+}
 
 class ScenePlant {
  public:

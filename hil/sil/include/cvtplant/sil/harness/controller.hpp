@@ -43,15 +43,18 @@ class ControllerUnderTest {
   virtual std::uint32_t rejected() const = 0;
   // Commands the harness lost on purpose on the controller's link.
   virtual std::uint32_t lost_on_purpose() const = 0;
-  // The controller's own criteria, appended to a lock-step run's.
+  // The controller's own criteria, appended to a lock-step run's; in real
+  // time those judged whether or not the plant kept time.
   virtual void add_checks(const Scenario& sc, std::vector<Check>& c) = 0;
+  // Plant frames the controller rejected cannot always be observed (a
+  // controller in another process).
+  virtual bool observes_rejections() const { return true; }
 
   // ---- real time (docs/sil.md#ratio-realtime) ----
   virtual void rt_begin(const Scenario& sc) = 0;
-  // Faults the scenario injects at time t.
-  virtual void rt_faults(const Scenario& sc, double t) = 0;
-  // Takes what the bus delivered, waiting up to wait_ns for the first frame.
-  virtual void rt_receive(std::int64_t wait_ns) = 0;
+  // Takes what the bus delivered at `now` (the pacing clock, ns), waiting up
+  // to wait_ns for the first frame.
+  virtual void rt_receive(std::int64_t now, std::int64_t wait_ns) = 0;
   // A control step when one is due at `now` (the pacing clock, ns).
   virtual RealtimeStep rt_step(const Scenario& sc, std::int64_t now, double t) = 0;
   // The plant group the last control step used.

@@ -7,7 +7,6 @@
 #include <string>
 #include <vector>
 
-#include "cvtctl/clamp_law.hpp"
 #include "cvtplant/can/messages.hpp"
 #include "cvtplant/sil/harness/scenario.hpp"
 
@@ -69,10 +68,19 @@ double grew(std::uint16_t now, std::uint16_t then);
 // must be small again; the common slip criteria skip the drop and this time.
 inline constexpr double kRecovery_s = 1.0;
 
+// The plant's torque capacity, from its published parameters (PlantParams,
+// docs/sil.md#published-parameters): tau_cap = coeff F_ax r1 at the driver's
+// running radius r1, the set-up radius when the plant's ratio is fixed.
+struct Capacity {
+  float coeff = 0.0f;     // PlantParams.capacity_coeff = 2 f mu0 / cos(beta0)
+  float radius_m = 0.0f;  // PlantParams.radius_driver_m
+  float at_Nm(float axial_force_N, float r1_m) const { return coeff * axial_force_N * r1_m; }
+};
+
 // One trace sample from the plant's latest group and the controller's last
-// commands. `capacity` holds the contact's mu0, cos(beta) and set-up radius
-// for the torque-capacity safety factor (docs/sil.md#criteria).
-Sample sample_of(const Scenario& sc, const cvtctl::ClampLawParams& capacity, double t_s, double t_cmd,
+// commands; the torque-capacity safety factor (docs/sil.md#criteria) with
+// the plant's `capacity`.
+Sample sample_of(const Scenario& sc, const Capacity& capacity, double t_s, double t_cmd,
                  const cvt::can::PlantStatus& st, const GroupView& g, const Commands& cmd);
 
 bool any_watchdog(const std::vector<Sample>& trace);
@@ -93,7 +101,7 @@ struct LockstepCounts {
   std::uint32_t no_reply = 0, bad_time = 0, bad_mode = 0;
   double resends = 0;            // requests the harness sent again
   double harness_rejected = 0;   // plant frames the harness rejected (over its lifetime)
-  double controller_rejected = 0;
+  double controller_rejected = 0;  // < 0: not observable (a controller in another process)
   double cmd_timeouts = 0;       // PlantDiag.cmd_timeouts growth
   double rejected_frames = 0;    // PlantDiag.rejected_frames growth
   double cmd_lost = 0, resyncs = 0, superseded = 0;  // PlantCmdDiag growth

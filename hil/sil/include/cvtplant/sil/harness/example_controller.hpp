@@ -31,11 +31,10 @@ class ExampleController final : public ControllerUnderTest {
   void add_checks(const Scenario&, std::vector<Check>&) override {}
 
   void rt_begin(const Scenario& sc) override;
-  void rt_faults(const Scenario& sc, double t) override;
-  void rt_receive(std::int64_t wait_ns) override { node_.poll(wait_ns); }
+  void rt_receive(std::int64_t, std::int64_t wait_ns) override { node_.poll(wait_ns); }
   RealtimeStep rt_step(const Scenario& sc, std::int64_t now, double t) override;
   GroupView group() const override { return {node_.speeds(), node_.ratio(), node_.forces(), node_.shift()}; }
-  void rt_end() override { faults_.scale_clamp(1.0f); }
+  void rt_end() override {}
   void add_realtime_checks(double periods, std::vector<Check>& c) override;
 
   cvtctl::ControllerNode& node() { return node_; }

@@ -34,7 +34,7 @@ class HarnessNode {
   // step_seq, which ours could repeat: a None request that is answered
   // (executing nothing either way) proves the next counter and step_seq
   // are taken as new (docs/can.md#e2e-checker, docs/sil.md#lost-frames).
-  bool sync();
+  bool sync(int attempts = 5);
 
   // Real time (docs/sil.md#ratio-realtime): SimCtrl RunRealTime, which the
   // bridge does not answer; it paces its frames from then on.
@@ -50,13 +50,23 @@ class HarnessNode {
   void drain();
   std::uint32_t realtime_statuses() const { return realtime_statuses_; }
 
-  bool send_load(bool active, float torque_Nm);
+  // HarnessLoad: the load override, and the clamping supply's fraction.
+  bool send_load(bool active, float torque_Nm, float clamp_supply = 1.0f);
+
+  // The plant's published parameters (docs/sil.md#published-parameters),
+  // from the last group that carried them (every answer to Reset).
+  bool has_params() const { return has_params_; }
+  const cvt::can::PlantParams& params() const { return params_; }
 
   const cvt::can::PlantStatus& status() const { return status_; }
   const cvt::can::PlantForces& forces() const { return forces_; }
   const cvt::can::PlantShift& shift() const { return shift_; }
   // A variable-ratio scene's groups also carry PlantShift (docs/can.md#layout).
-  void expect_shift(bool on) { expect_shift_ = on; }
+  // A fixed-ratio scene sends none: the last one of another scene is forgotten.
+  void expect_shift(bool on) {
+    expect_shift_ = on;
+    if (!on) shift_ = cvt::can::PlantShift{};
+  }
   const cvt::can::PlantSpeeds& speeds() const { return speeds_; }
   const cvt::can::PlantRatio& ratio() const { return ratio_; }
   const cvt::can::PlantDiag& diag() const { return diag_; }
@@ -101,6 +111,8 @@ class HarnessNode {
   cvt::can::PlantDiag diag_{};
   cvt::can::PlantBusDiag bus_diag_{};
   cvt::can::PlantCmdDiag cmd_diag_{};
+  cvt::can::PlantParams params_{};
+  bool has_params_ = false;
   std::uint32_t rejected_ = 0, mixed_groups_ = 0, resends_ = 0, no_reply_ = 0, partial_groups_ = 0;
   std::uint32_t realtime_statuses_ = 0;
 };

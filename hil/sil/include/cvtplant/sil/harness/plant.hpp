@@ -37,14 +37,17 @@ class PlantUnderTest {
   virtual RealTimeBus realtime() = 0;
 };
 
-// The in-process bus: node 0 the plant, 1 the harness, 2 a controller,
-// on a virtual clock (the loopback transport, docs/can.md#port).
+// The in-process bus on a virtual clock (the loopback transport,
+// docs/can.md#port): node 0 the plant, 1 the harness, 2 the example
+// controller or the harness's port for an external one, 3 an external
+// controller in this process (tests of the external-controller protocol).
 struct InProcessBus {
   cvt::port::VirtualClock clock;
-  cvt::port::LoopbackBus<3, 256> bus{&clock};
+  cvt::port::LoopbackBus<4, 256> bus{&clock};
   cvt::port::CanTransport& plant_node() { return bus.node(0); }
   cvt::port::CanTransport& harness_node() { return bus.node(1); }
   cvt::port::CanTransport& controller_node() { return bus.node(2); }
+  cvt::port::CanTransport& external_node() { return bus.node(3); }
 };
 
 // The SIL bridge (the scene's real-time plant) in-process on the loopback

@@ -6,7 +6,6 @@
 
 #include <string>
 
-#include "cvtctl/clamp_law.hpp"
 #include "cvtctl/controller_node.hpp"
 #include "cvtplant/sil/harness/controller.hpp"
 #include "cvtplant/sil/harness/criteria.hpp"
@@ -19,9 +18,6 @@ namespace cvt::sil::harness {
 
 struct RunConfig {
   std::string out_dir = ".";  // the CSV traces
-  // The contact's mu0, cos(beta) and set-up driver radius, for the
-  // torque-capacity safety factor of the criteria (docs/sil.md#criteria).
-  cvtctl::ClampLawParams capacity{};
 };
 
 // `harness_faults` is the harness's own transport wrapper, which the fault

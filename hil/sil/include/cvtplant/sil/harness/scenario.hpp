@@ -55,10 +55,18 @@ struct Scenario {
   double clamp_drop_start_s = -1, clamp_drop_end_s = -1;  // supply pressure at clamp_drop_factor
   float clamp_drop_factor = 1.0f;
   bool expect_end_stop = false;  // the sweep drives the chain onto the underdrive and overdrive stops
+  double end_stops_by_s = 0;     // ... by this time
+  // The shortest run (`--t-end`) whose criteria all have their data: the
+  // events, a settled set-point, a recovery.
+  double min_t_end_s = 0;
 };
 
 // a before t0, b after t1, linear between.
 float ramp(double t, double t0, double t1, float a, float b);
+
+// The clamping supply's fraction at t (HarnessLoad.clamp_supply_factor):
+// the scenario's drop, else 1.
+float clamp_supply(const Scenario& sc, double t);
 
 // Every scenario, in the order `--scenario all` runs them.
 std::vector<Scenario> scenarios();
