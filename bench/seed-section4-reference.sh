@@ -3,11 +3,13 @@
 # (docs/seed-section4.md): for each friction case the seed's run-up from rest
 # and three steady operating points, each with its convergence runs (the
 # tolerance tightened 10x and 100x), 2 s of the seed's RK4 at dt = 1e-6 s and
-# 19 IAAFT surrogates per signal; then the claim-by-claim table and the
+# 19 IAAFT surrogates per signal, and the largest exponent of the
+# reference's own equations by two trajectories over the window (5 s; 3.5 s
+# for case 1's run-up, whose window is 4 s); then the claim-by-claim table and the
 # per-point numbers of docs/seed-section4.md, as markdown.
 #
-# About 45 min of CPU on one core (the RK4 spans are about a third); runs are
-# cached under CACHE_DIR, so a second call only analyses.
+# About an hour of CPU on one core; runs are cached under CACHE_DIR, so a
+# second call only analyses.
 #
 # Usage: bench/seed-section4-reference.sh [OUT_DIR] [CACHE_DIR] [BUILD_DIR]
 #        (defaults: build/seed-section4, OUT_DIR/reference-cache, build/host-release)
@@ -23,15 +25,17 @@ cvt="$build/tools/cvtplant"
 full=(--convergence 10,100 --rk4 2 --surrogates 19 --cache-dir "$cache" --json)
 # The run-ups: the seed's windows (case 1: the last 4000 samples of 10 s;
 # case 2: 10,000 samples after a 2 s transient of 12 s).
-nice -n 10 "$cvt" analyze seed-section4 --reference --case 1 --out-dir "$out/case1-run-up" "${full[@]}" >"$out/case1-run-up.json"
-nice -n 10 "$cvt" analyze seed-section4 --reference --case 2 --out-dir "$out/case2-run-up" "${full[@]}" >"$out/case2-run-up.json"
+nice -n 10 "$cvt" analyze seed-section4 --reference --case 1 --benettin 3.5 --out-dir "$out/case1-run-up" "${full[@]}" \
+  >"$out/case1-run-up.json"
+nice -n 10 "$cvt" analyze seed-section4 --reference --case 2 --benettin 5 --out-dir "$out/case2-run-up" "${full[@]}" \
+  >"$out/case2-run-up.json"
 # Steady points: two where both wraps grip, one in the run-up's sliding regime
 # (case 1: the driver wrap in gross slip, as over the seed's case-1 window;
 # case 2: the driven wrap slipping, as at 4.5-5 s of its run-up). A 4 s
 # transient after the release.
-nice -n 10 "$cvt" analyze seed-section4 --reference --case 1 --steady 30,100,300:80 --t-transient 4 \
+nice -n 10 "$cvt" analyze seed-section4 --reference --case 1 --steady 30,100,300:80 --t-transient 4 --benettin 5 \
   --out-dir "$out/case1-steady" "${full[@]}" >"$out/case1-steady.json"
-nice -n 10 "$cvt" analyze seed-section4 --reference --case 2 --steady 30,100,130:64 --t-transient 4 \
+nice -n 10 "$cvt" analyze seed-section4 --reference --case 2 --steady 30,100,130:64 --t-transient 4 --benettin 5 \
   --out-dir "$out/case2-steady" "${full[@]}" >"$out/case2-steady.json"
 
 python3 - "$out" <<'PY'
@@ -54,8 +58,8 @@ for name in runs:
                       f"({g['verdict']['kind']}) | {c['verdict']} |")
 print()
 print("| case | run | signal | mean | std | stationary | seed embedding | AMI/FNN embedding | lines | K | DET | "
-      "Rosenstein (seed d, m) [1/s] | surrogates: NLPE rank, TRA p | separation rate [1/s] | verdict |")
-print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+      "Rosenstein (seed d, m) [1/s] | surrogates: NLPE rank, TRA p | separation rate [1/s] | two trajectories [1/s] | verdict |")
+print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
 for name in runs:
     j = json.load(open(f"{out}/{name}.json"))
     for s in j["scenarios"]:
@@ -69,6 +73,8 @@ for name in runs:
             sur = g.get("surrogates", {}).get("statistics", [])
             nl = next((x for x in sur if x["name"] == "prediction_error"), None)
             tr = next((x for x in sur if x["name"] == "time_reversal_asymmetry"), None)
+            e = s.get("equation_exponent")
+            ex = "-" if not e else (e["failure"] if e["failure"] else "%.3g +- %.2g" % (e["lambda_per_s"], e["ci95_per_s"]))
             rates = []
             for c in g["convergence"]:
                 for k in ("separation_from_base", "separation_from_previous"):
@@ -83,5 +89,5 @@ for name in runs:
                   f"| {se['test01']['K']:.2f} | {se['rqa']['DET']:.2f} "
                   f"| {se['rosenstein']['lambda']:.3g} +- {se['rosenstein']['ci95']:.2g}{'' if se['rosenstein']['fit']['scaling_region'] else ' (no scaling region)'} "
                   f"| {nl['rank_low'] if nl else '-'} of {len(nl['surrogates']) + 1 if nl else '-'}, {tr['p'] if tr else '-'} "
-                  f"| {', '.join(rates) or '-'} | {g['verdict']['verdict']} ({g['verdict']['kind']}) |")
+                  f"| {', '.join(rates) or '-'} | {ex} | {g['verdict']['verdict']} ({g['verdict']['kind']}) |")
 PY

@@ -68,6 +68,7 @@ TwoTrajectoryResult largest_exponent_two_trajectories(RestartableFlow& flow, con
       throw std::runtime_error("two trajectories: the deviation vanished or is not finite at t = " + std::to_string(t1));
     for (std::size_t i = 0; i < u.size(); ++i) u[i] = w[i] * d[i] / dist;
     flow.restart(t1, y1);
+    if (o.progress) o.progress(k + 1, o.warmup + o.intervals);
     if (k < o.warmup) continue;
     const double g = std::log(dist / o.delta0);
     r.stretch.push_back(g);

@@ -45,6 +45,7 @@ struct Section4Reference {
   std::string convergence = "10,100";
   double rk4_s = 0, rk4_dt = 1e-6;
   int surrogates = 19;
+  double benettin_s = 0;  // accumulated seconds of the two-trajectory exponent; 0: none
   std::string cache_dir;
 };
 
@@ -158,6 +159,26 @@ json separation_json(const an::Separation& s) {
           {"rate_bound_per_s", s.rate_bound}};
 }
 
+// docs/seed-section4.md#benettin
+json exponent_json(const section4ref::ExponentRun& e) {
+  const auto& r = e.result;
+  return {{"method", "two trajectories (Benettin) on cvt::mbd::Stepper, tolerance-scaled norm of the link and pulley-speed states"},
+          {"lambda_per_s", e.failure.empty() ? json(r.lambda) : json(nullptr)},
+          {"ci95_per_s", e.failure.empty() ? json(r.ci95) : json(nullptr)},
+          {"batch_lambda_per_s", r.batch_lambda},
+          {"t_start_s", e.t_start_s},
+          {"t_renorm_s", e.options.t_renorm_s},
+          {"warmup_intervals", e.options.warmup},
+          {"intervals", r.intervals},
+          {"delta0", e.options.delta0},
+          {"rtol", e.rtol},
+          {"max_stretch", r.max_stretch},
+          {"convergence", {{"t_s", r.t_s}, {"lambda_per_s", r.cumulative}}},
+          {"cpu_s", e.cpu_s},
+          {"from_cache", e.from_cache},
+          {"failure", e.failure.empty() ? json(nullptr) : json(e.failure)}};
+}
+
 // What one scenario's analysis needs beyond its base run.
 struct ScenarioRuns {
   Scenario scenario;
@@ -166,6 +187,8 @@ struct ScenarioRuns {
   std::vector<std::pair<double, Run>> tighter;  // (factor, run at rtol / factor)
   bool has_rk4 = false;
   Run rk4;
+  bool has_exponent = false;
+  section4ref::ExponentRun exponent;
 };
 
 json run_json(const Run& r, const Numerics& n) {
@@ -259,6 +282,10 @@ json analyse_signal(const Section4Reference& o, const SeedChoices& sc, const Sce
                  an::line_power_fraction(x, dt, explained_Hz, 2 * se.line_resolution_Hz)}};
   if (ev.has_surrogates) j["surrogates"] = surrogates_json(ev.surrogates);
 
+  if (R.has_exponent && R.exponent.failure.empty())
+    ev.equation_exponents.push_back({"two trajectories on the reference's equations (rtol " +
+                                         section4ref::format_speed(R.exponent.rtol) + ")",
+                                     R.exponent.result.lambda, R.exponent.result.ci95});
   // Convergence: the same window at tighter tolerances, and the runs' separation.
   json conv = json::array();
   std::vector<std::pair<std::string, an::Separation>> seps;
@@ -398,6 +425,9 @@ std::shared_ptr<Section4Reference> add_section4_reference(CLI::App* c) {
   add_real(c, "--rk4", r->rk4_s, {0, 20}, "with --reference: seconds of the seed's RK4 after the release (0: none)");
   add_real(c, "--rk4-dt", r->rk4_dt, {1e-7, 4e-6}, "the RK4 step [s] (the seed's: 1e-6)");
   add_int(c, "--surrogates", r->surrogates, 0, 999, "with --reference: IAAFT surrogates per signal (0: no test)");
+  add_real(c, "--benettin", r->benettin_s, {0, 100},
+           "with --reference: seconds over which the largest exponent of the reference's equations is accumulated by "
+           "two trajectories from the window's start (0: none)");
   c->add_option("--cache-dir", r->cache_dir, "with --reference: where runs are cached (default: OUT-DIR/reference-cache)");
   return r;
 }
@@ -478,6 +508,9 @@ int run_section4_reference(const Section4Reference& o) {
       seconds += s.t_end_s * (1.0 + static_cast<double>(factors.size()));
       steps += 4e4 * s.t_end_s * (1.0 + 2.0 * static_cast<double>(factors.size()));
       if (o.rk4_s > 0) steps += std::min(o.rk4_s, s.t_end_s) / o.rk4_dt;
+      // The two trajectories at a hundredfold tolerance: to the window's start,
+      // then each interval twice.
+      if (o.benettin_s > 0) steps += 8e4 * (s.t_end_s + 2.0 * (o.benettin_s + 0.5));
     }
     Caps caps;
     caps.max_steps = option_value<double>(app, "--max-steps", caps.max_steps);
@@ -526,10 +559,25 @@ int run_section4_reference(const Section4Reference& o) {
     }
     Window w;
     w.n = points;
+    if (o.benettin_s > 0) {
+      // docs/seed-section4.md#benettin: from the window's start, 0.5 s to align
+      // the deviation, then benettin_s accumulated, every 20 ms renormalised to
+      // 1e-5 in the tolerance-scaled norm, at a hundred times the base tolerance.
+      an::TwoTrajectoryOptions to;
+      to.t_renorm_s = 0.02;
+      to.warmup = 25;
+      to.intervals = std::max(10, static_cast<int>(std::lround(o.benettin_s / to.t_renorm_s)));
+      to.batches = 10;
+      to.delta0 = 1e-5;
+      const double start = s.steady || t_tr_given ? t_tr_opt : s.t_end_s - static_cast<double>(points) * dt;
+      R.has_exponent = true;
+      R.exponent = section4ref::equation_exponent(s, R.base.tau_in_Nm, start, o.rtol / 100, to, cache, lbl);
+    }
     w.from = static_cast<std::size_t>(std::lround((s.steady || t_tr_given ? t_tr_opt : s.t_end_s - static_cast<double>(points) * dt) / dt));
     w.t0_s = static_cast<double>(w.from) * dt;
     w.t1_s = static_cast<double>(w.from + w.n) * dt;
     json sj{{"name", R.name},
+            {"equation_exponent", R.has_exponent ? exponent_json(R.exponent) : json(nullptr)},
             {"kind", s.steady ? "steady" : "run-up"},
             {"t_end_s", s.t_end_s},
             {"window", {{"t_begin_s", w.t0_s}, {"t_end_s", w.t1_s}, {"points", w.n}}},

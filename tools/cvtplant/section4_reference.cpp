@@ -11,7 +11,13 @@
 #include "commands.hpp"
 #include "progress.hpp"
 #include "cvtplant/validation/cache.hpp"
+#include <ctime>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
 #include "cvtplant/mbd/model.hpp"
+#include "cvtplant/mbd/stepper.hpp"
 
 namespace cvtcli::section4ref {
 
@@ -281,6 +287,114 @@ Run reference_run(const Scenario& s, const Numerics& n, const std::string& cache
   write_run(base, r);
   write_all(base + ".key", key);  // last: a run cut short leaves no key, so no hit
   r.cache_file = base + ".csv";
+  return r;
+}
+
+namespace {
+
+// The reference as a restartable flow: a Stepper held at its release inputs.
+class StepperFlow : public cvt::analysis::RestartableFlow {
+ public:
+  explicit StepperFlow(cvt::mbd::Stepper& s) : s_(s), in_(s.inputs()) {}
+  double t_s() const override { return s_.t_s(); }
+  std::vector<double> state() const override { return {s_.state(), s_.state() + s_.model().size()}; }
+  void restart(double t, const std::vector<double>& y) override {
+    cvt::mbd::Stepper::Snapshot snap = s_.save();
+    snap.t_s = t;
+    snap.y = y;
+    s_.restore(snap);
+  }
+  void advance(double dt) override {
+    const int frames = static_cast<int>(std::lround(dt / 1e-3));
+    s_.step(in_, frames);
+    if (s_.faulted()) throw std::runtime_error(s_.fault_message());
+  }
+
+ private:
+  cvt::mbd::Stepper& s_;
+  cvt::mbd::StepInputs in_;
+};
+
+}  // namespace
+
+ExponentRun equation_exponent(const Scenario& s, double tau_in_Nm, double t_start_s, double rtol,
+                              const cvt::analysis::TwoTrajectoryOptions& o, const std::string& cache_dir,
+                              const std::string& label) {
+  ExponentRun r;
+  r.t_start_s = t_start_s;
+  r.rtol = rtol;
+  r.options = o;
+  const cvt::mbd::MbdParams p = scenario_params(s, tau_in_Nm);
+  cvt::mbd::RunOptions ro;
+  ro.rtol = rtol;
+  ro.t_end_s = t_start_s + (o.warmup + o.intervals) * o.t_renorm_s;
+  std::ostringstream k;
+  k.precision(17);
+  k << "section4 two trajectories, cache format " << kCacheFormat << ": start " << t_start_s << " renorm "
+    << o.t_renorm_s << " warmup " << o.warmup << " intervals " << o.intervals << " batches " << o.batches << " delta0 "
+    << o.delta0 << " seed " << o.seed << "\n"
+    << cvt::validation::reference_key(p, ro);
+  const std::string key = k.str();
+  const std::string base = cache_dir.empty() ? "" : cache_dir + "/" + cvt::validation::key_hash(key);
+  if (!base.empty() && read_all(base + ".key") == key) {
+    try {
+      const nlohmann::json j = nlohmann::json::parse(read_all(base + ".exponent"));
+      r.result.lambda = j.at("lambda");
+      r.result.ci95 = j.at("ci95");
+      r.result.max_stretch = j.at("max_stretch");
+      r.result.intervals = j.at("intervals");
+      r.result.batch_lambda = j.at("batch_lambda").get<std::vector<double>>();
+      r.result.t_s = j.at("t_s").get<std::vector<double>>();
+      r.result.cumulative = j.at("cumulative").get<std::vector<double>>();
+      r.cpu_s = j.at("cpu_s");
+      r.failure = j.at("failure");
+      r.from_cache = true;
+      return r;
+    } catch (const nlohmann::json::exception&) {
+      // an unreadable record: computed again
+    }
+  }
+  const std::clock_t cpu0 = std::clock();
+  cvt::mbd::StepperOptions so;
+  so.rtol = rtol;
+  // The bar counts the way to the start and each interval's two runs, in simulated seconds.
+  const double pair_s = 2.0 * o.t_renorm_s;
+  Progress progress(label + ": two trajectories", t_start_s + (o.warmup + o.intervals) * pair_s);
+  try {
+    cvt::mbd::Stepper st(p, so);
+    if (st.faulted()) throw std::runtime_error(st.fault_message());
+    // To the start, a second at a time for the progress display.
+    while (st.t_s() < t_start_s - 1e-9) {
+      const int frames = static_cast<int>(std::lround(std::min(1.0, t_start_s - st.t_s()) / 1e-3));
+      st.step(st.inputs(), frames);
+      if (st.faulted()) throw std::runtime_error(st.fault_message());
+      progress.update(st.t_s());
+    }
+    // The state: links (x, y, theta and their rates) and pulley speeds, each
+    // over its tolerance scale (docs/mbd.md#tolerances).
+    const cvt::mbd::ChainModel& m = st.model();
+    std::vector<double> w(static_cast<std::size_t>(m.size()), 0.0);
+    for (int i = 0; i < 6 * m.links(); ++i) w[static_cast<std::size_t>(i)] = 1.0 / m.tolerance_scale(i);
+    for (int j = 0; j < 2; ++j) w[static_cast<std::size_t>(m.pulley_speed(j))] = 1.0 / m.tolerance_scale(m.pulley_speed(j));
+    StepperFlow flow(st);
+    cvt::analysis::TwoTrajectoryOptions with_progress = o;
+    with_progress.progress = [&](int done, int) { progress.update(t_start_s + done * pair_s); };
+    r.result = cvt::analysis::largest_exponent_two_trajectories(flow, w, with_progress);
+  } catch (const std::runtime_error& e) {
+    r.failure = e.what();
+  } catch (const std::invalid_argument& e) {
+    throw UsageError{e.what()};
+  }
+  progress.finish();
+  r.cpu_s = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
+  if (base.empty()) return r;
+  const nlohmann::json j{{"lambda", r.result.lambda},       {"ci95", r.result.ci95},
+                         {"max_stretch", r.result.max_stretch}, {"intervals", r.result.intervals},
+                         {"batch_lambda", r.result.batch_lambda}, {"t_s", r.result.t_s},
+                         {"cumulative", r.result.cumulative},   {"cpu_s", r.cpu_s},
+                         {"failure", r.failure}};
+  write_all(base + ".exponent", j.dump());
+  write_all(base + ".key", key);
   return r;
 }
 

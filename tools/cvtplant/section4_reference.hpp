@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "cvtplant/analysis/two_trajectory.hpp"
 #include "cvtplant/mbd/params.hpp"
 #include "cvtplant/mbd/run.hpp"
 
@@ -80,5 +81,24 @@ std::string signal_unit(const std::string& name);
 // first run the start alone to read the hold's holding torque, then release
 // with it. A run that fails keeps its samples and names the failure.
 Run reference_run(const Scenario& s, const Numerics& n, const std::string& cache_dir, const std::string& label);
+
+// The largest Lyapunov exponent of a scenario from the reference's own
+// equations (docs/seed-section4.md#benettin): two trajectories
+// (docs/analysis.md#two-trajectory) on cvt::mbd::Stepper, which saves and
+// restores the state; the deviation is measured in the tolerance-scaled
+// norm of the link and pulley-speed states (the pulley angles and the
+// energy ledger feed nothing back and are left out). The stepper runs from
+// the release to t_start_s, then o.warmup intervals align the deviation and
+// o.intervals are accumulated. Cached like the runs.
+struct ExponentRun {
+  cvt::analysis::TwoTrajectoryResult result;
+  double t_start_s = 0, rtol = 0, cpu_s = 0;
+  cvt::analysis::TwoTrajectoryOptions options;
+  bool from_cache = false;
+  std::string failure;  // the stepper faulted: why (no estimate then)
+};
+ExponentRun equation_exponent(const Scenario& s, double tau_in_Nm, double t_start_s, double rtol,
+                              const cvt::analysis::TwoTrajectoryOptions& o, const std::string& cache_dir,
+                              const std::string& label);
 
 }  // namespace cvtcli::section4ref

@@ -2,8 +2,9 @@
 """`cvtplant analyze seed-section4 --reference`, short (docs/seed-section4.md#ci).
 
 One steady operating point of seed case 1 (driver at 60 rad/s, a 1 s
-transient, 1000 samples), one convergence run at a tenfold tighter tolerance
-and 5 surrogates: a few seconds of reference time. Checks the summary's
+transient, 1000 samples), one convergence run at a tenfold tighter tolerance,
+5 surrogates and ten intervals of the two-trajectory exponent: a few seconds
+of reference time. Checks the summary's
 fields and what the reference must show there, not just that it ran:
   - every documented field is present, with its unit where it has one;
   - the links pass the middle of both wraps at the same rate (a closed chain
@@ -62,7 +63,8 @@ def main():
     bad_input(binary, tmp)
     out = os.path.join(tmp, "case1")
     cmd = [binary, "analyze", "seed-section4", "--reference", "--case", "1", "--steady", "60", "--points", "1000",
-           "--t-transient", "1", "--convergence", "10", "--surrogates", "5", "--signals", "F_ax1_N,omega1_rad_s",
+           "--t-transient", "1", "--convergence", "10", "--surrogates", "5", "--benettin", "0.2",
+           "--signals", "F_ax1_N,omega1_rad_s",
            "--out-dir", out, "--json"]
     p = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
     check(p.returncode == 0, "exit 0 (stderr: %s)" % p.stderr.strip()[-300:])
@@ -94,6 +96,13 @@ def main():
           "a closed chain: %d and %d passages through the two wraps" % (lr["driver_passages"], lr["driven_passages"]))
     check(abs(lr["ratio"] - 1) <= lr["ratio_resolution_rel"], "link-rate ratio 1 within %.2g" % lr["ratio_resolution_rel"])
     check(abs(lr["chain_lap_Hz"] * 44 - lr["driver_Hz"]) < 1e-9 * lr["driver_Hz"], "lap rate = link rate / 44")
+    e = s["equation_exponent"]
+    check(e["failure"] is None and e["intervals"] == 10 and e["t_start_s"] == 1.0 and e["rtol"] == 5e-9 and
+          len(e["batch_lambda_per_s"]) == 10 and len(e["convergence"]["lambda_per_s"]) == 10,
+          "two trajectories: 10 intervals of 20 ms from the window's start at rtol 5e-9")
+    check(abs(e["convergence"]["lambda_per_s"][-1] - e["lambda_per_s"]) < 1e-9 * max(1, abs(e["lambda_per_s"])) and
+          abs(sum(e["batch_lambda_per_s"]) / 10 - e["lambda_per_s"]) < 1e-9 * max(1, abs(e["lambda_per_s"])),
+          "the exponent is the mean of its batches and the last running estimate (%.3g 1/s)" % e["lambda_per_s"])
     sigs = {g["signal"]: g for g in s["signals"]}
     check(set(sigs) == {"F_ax1_N", "omega1_rad_s"}, "the two signals asked for")
     for name, g in sigs.items():

@@ -9,6 +9,7 @@
 // the equations nor their Jacobian, only a stepper that restarts from any
 // state (a black box, e.g. the multibody reference's integrator).
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace cvt::analysis {
@@ -32,6 +33,9 @@ struct TwoTrajectoryOptions {
   int batches = 10;          // for the confidence interval (batch means, Student t)
   double delta0 = 1e-6;      // the deviation's size in the weighted norm
   std::uint64_t seed = 20260601u;  // the first direction
+  // Called after each interval with (intervals done, warmup + intervals), e.g.
+  // by a progress bar; empty: not called.
+  std::function<void(int done, int total)> progress;
 };
 
 struct TwoTrajectoryResult {
