@@ -45,15 +45,12 @@ ChaosVerdict chaos_verdict(const ChaosEvidence& e) {
     }
     v.reasons.push_back("with " + a.label + ": " + a.kind + (a.kind == base ? " as well" : " (against " + base + ")"));
   }
-  // 3. Exponents from the equations. A rate below the zero band (in e-folds
-  // per mean period) is the neutral exponent of a cycle or a torus.
-  const double period_s = c.mean_period_s;
-  const double zero_band = period_s > 0 ? e.zero_efolds_per_period / period_s : 0.0;
+  // 3. Exponents from the equations, each against its own zero band.
   int positive = 0, regular = 0;
   for (const auto& x : e.equation_exponents) {
-    const bool pos = x.lambda - x.ci95 > zero_band;
-    const bool reg = x.lambda + x.ci95 <= zero_band;
-    v.reasons.push_back(x.source + fmt(": largest exponent %.4g +- %.2g 1/s (zero band %.3g 1/s)", x.lambda, x.ci95, zero_band) +
+    const bool pos = x.lambda - x.ci95 > x.zero_band;
+    const bool reg = x.lambda + x.ci95 <= x.zero_band;
+    v.reasons.push_back(x.source + fmt(": largest exponent %.4g +- %.2g 1/s (zero band %.3g 1/s)", x.lambda, x.ci95, x.zero_band) +
                         (pos ? ", positive" : reg ? ", not positive" : ", not resolved from zero"));
     positive += pos;
     regular += reg;

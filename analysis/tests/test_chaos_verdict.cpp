@@ -102,13 +102,18 @@ TEST_CASE("chaos verdict: an exponent from the equations overrules the series") 
   ChaosEvidence e;
   e.classification.classification = "periodic";
   e.classification.mean_period_s = 0.01;
-  e.equation_exponents.push_back({"Benettin", 5.0, 1.0});
+  e.equation_exponents.push_back({"Benettin", 5.0, 1.0, 0.2});
   CHECK(chaos_verdict(e).verdict == "chaotic");
   e.classification.classification = "chaotic";
-  e.equation_exponents = {{"Benettin", 0.1, 0.3}};  // zero band: 0.02 / 0.01 s = 2 1/s
+  e.equation_exponents = {{"Benettin", 0.01, 0.1, 0.2}};  // within the band
   const ChaosVerdict r = chaos_verdict(e);
   CHECK(r.verdict == "regular");
-  e.equation_exponents = {{"Benettin", 5.0, 1.0}, {"separation", -1.0, 0.5}};
+  // Straddling the band: not resolved, the series decides (chaotic, no surrogates: undecided).
+  e.equation_exponents = {{"Benettin", 0.5, 1.0, 0.2}};
+  CHECK(chaos_verdict(e).verdict == "undecided");
+  e.classification.classification = "periodic";
+  CHECK(chaos_verdict(e).verdict == "regular");
+  e.equation_exponents = {{"Benettin", 5.0, 1.0, 0.2}, {"Benettin, other settings", -1.0, 0.5, 0.2}};
   CHECK(chaos_verdict(e).verdict == "undecided");
   // Chaotic against a regular alternative is a contradiction; inconclusive is not.
   ChaosEvidence a;

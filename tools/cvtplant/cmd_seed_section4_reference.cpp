@@ -285,7 +285,8 @@ json analyse_signal(const Section4Reference& o, const SeedChoices& sc, const Sce
   if (R.has_exponent && R.exponent.failure.empty())
     ev.equation_exponents.push_back({"two trajectories on the reference's equations (rtol " +
                                          section4ref::format_speed(R.exponent.rtol) + ")",
-                                     R.exponent.result.lambda, R.exponent.result.ci95});
+                                     R.exponent.result.lambda, R.exponent.result.ci95,
+                                     1.0 / (R.exponent.result.intervals * R.exponent.options.t_renorm_s)});
   // Convergence: the same window at tighter tolerances, and the runs' separation.
   json conv = json::array();
   std::vector<std::pair<std::string, an::Separation>> seps;
@@ -313,8 +314,6 @@ json analyse_signal(const Section4Reference& o, const SeedChoices& sc, const Sce
     char lbl[80];
     std::snprintf(lbl, sizeof lbl, "rtol %g against %g", o.rtol, o.rtol / factor);
     seps.push_back({lbl, s});
-    if (s.exponential_growth)
-      ev.equation_exponents.push_back({std::string("separation of the runs at ") + lbl, s.exponential.slope, s.exponential.ci95});
     // The two tightest runs against each other: on a chaotic attractor their
     // distance starts lower and saturates later, by ln(factor) / lambda.
     if (k > 0) {
@@ -325,9 +324,6 @@ json analyse_signal(const Section4Reference& o, const SeedChoices& sc, const Sce
       char lbl2[80];
       std::snprintf(lbl2, sizeof lbl2, "rtol %g against %g", o.rtol / R.tighter[k - 1].first, o.rtol / factor);
       seps.push_back({lbl2, sp2});
-      if (sp2.exponential_growth)
-        ev.equation_exponents.push_back({std::string("separation of the runs at ") + lbl2, sp2.exponential.slope,
-                                         sp2.exponential.ci95});
     }
     conv.push_back(cj);
   }

@@ -16,9 +16,12 @@
 namespace cvt::analysis {
 
 // A largest exponent with its 95 % half-width, and where it comes from.
+// zero_band: the rate below which the estimate cannot tell a positive
+// exponent from a neutral one over the time it was accumulated (a cycle's
+// or a torus' neutral exponent decays like 1 / T), e.g. 1 / T.
 struct ExponentEstimate {
-  std::string source;  // e.g. "Benettin on the reference's equations"
-  double lambda = 0, ci95 = 0;  // [1/s]
+  std::string source;  // e.g. "two trajectories on the reference's equations"
+  double lambda = 0, ci95 = 0, zero_band = 0;  // [1/s]
 };
 
 struct ChaosEvidence {
@@ -45,11 +48,8 @@ struct ChaosEvidence {
   bool lines_explained = false;
   int line_bases = 0;
   double min_line_power_fraction = 0.99;  // a line spectrum: at least this much of the power in its lines
-  // Exponents from the equations (Benettin, or two runs' separation).
+  // Exponents from the equations (two trajectories, Benettin).
   std::vector<ExponentEstimate> equation_exponents;
-  // A largest exponent below this many e-folds per mean period counts as
-  // zero (a limit cycle's or a torus' neutral exponent read over finite time).
-  double zero_efolds_per_period = 0.02;
 };
 
 struct ChaosVerdict {
@@ -61,9 +61,10 @@ struct ChaosVerdict {
 // Rules, in order (docs/analysis.md#chaos-verdict):
 // 1. a non-stationary series: undecided;
 // 2. an alternative that contradicts (chaotic against a regular kind): undecided;
-// 3. an exponent from the equations decides where its CI excludes zero
-//    (positive: chaotic; negative or within the zero band: regular); equation
-//    exponents that contradict each other: undecided;
+// 3. an exponent from the equations decides where its CI clears its zero
+//    band (above: chaotic; at or below: regular); one that straddles it is
+//    listed and the next rules decide; exponents that contradict each other:
+//    undecided;
 // 4. a line spectrum (at least min_line_power_fraction of the power in
 //    lines, every line a combination of the bases) is regular: periodic with
 //    one base, quasi-periodic with more, unless the 0-1 test or the
