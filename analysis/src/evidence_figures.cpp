@@ -151,6 +151,18 @@ std::vector<std::string> evidence_figures(const EvidenceFigures& f, const std::s
       << "set ylabel 'log10(max |a - b| / std a) per block'\n" << plot << "\nset key default\nset ylabel ''\n";
     out.push_back(D + "separation.png");
   }
+  if (f.has_exponent && !f.exponent_t_s.empty()) {
+    auto d = open_text_file(D + "exponent.dat");
+    for (std::size_t i = 0; i < f.exponent_t_s.size(); ++i) d << f.exponent_t_s[i] << ' ' << f.exponent_running[i] << '\n';
+    const double t1 = f.exponent_t_s.back();
+    s << "set output '" << D << "exponent.png'\nset title sprintf('" << f.label
+      << ": largest exponent of the equations, two trajectories: %.4g +- %.2g 1/s', " << f.exponent << ", "
+      << f.exponent_ci95 << ")\nset xlabel 'accumulated time [s]'\nset ylabel 'running estimate [1/s]'\n"
+      << "set object 2 rect from 0," << f.exponent - f.exponent_ci95 << " to " << t1 << "," << f.exponent + f.exponent_ci95
+      << " fc rgb '#dddddd' fs solid noborder behind\nplot '" << D
+      << "exponent.dat' u 1:2 w l lw 2 t 'running estimate', 0 lc 'black' dt 2 notitle\nunset object 2\nset ylabel ''\n";
+    out.push_back(D + "exponent.png");
+  }
   s.close();
   run_gnuplot(D + "evidence.gp");
 

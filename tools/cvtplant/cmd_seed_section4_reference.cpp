@@ -386,6 +386,13 @@ json analyse_signal(const Section4Reference& o, const SeedChoices& sc, const Sce
   f.has_surrogates = ev.has_surrogates;
   f.surrogates = ev.surrogates;
   f.separations = seps;
+  if (R.has_exponent && R.exponent.failure.empty()) {
+    f.has_exponent = true;
+    f.exponent_t_s = R.exponent.result.t_s;
+    f.exponent_running = R.exponent.result.cumulative;
+    f.exponent = R.exponent.result.lambda;
+    f.exponent_ci95 = R.exponent.result.ci95;
+  }
   const auto more = an::evidence_figures(f, dir);
   figures.insert(figures.end(), more.begin(), more.end());
   j["figures"] = figures;

@@ -4,8 +4,9 @@
 // files written next to them: the window's time history, delay
 // reconstructions at given delays (seed Figs. 15-16), AMI, FNN with Cao
 // (Fig. 17), divergence curves (Figs. 18-20), the recurrence plot (Figs.
-// 21-22), the spectrum with marked frequencies, the surrogate statistics and
-// the separation of runs that differ only in their numerics.
+// 21-22), the spectrum with marked frequencies, the surrogate statistics,
+// the separation of runs that differ only in their numerics and the running
+// estimate of the equations' largest exponent.
 #include <string>
 #include <utility>
 #include <vector>
@@ -35,6 +36,11 @@ struct EvidenceFigures {
   bool has_surrogates = false;
   SurrogateTest surrogates;
   std::vector<std::pair<std::string, Separation>> separations;
+  // The largest exponent of the equations as it accumulated (two
+  // trajectories): running estimate against time, with its final value and CI.
+  bool has_exponent = false;
+  std::vector<double> exponent_t_s, exponent_running;
+  double exponent = 0, exponent_ci95 = 0;
 };
 
 // Writes the PNGs into out_dir (created) and returns their paths.
