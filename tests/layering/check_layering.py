@@ -19,6 +19,7 @@ INCLUDE_DIRS = {
             "hil/sil/include", "hil/common"],
     "analysis": ["analysis/include"],
     "mbd": ["mbd/include"],
+    "fmu": ["fmu/include"],
     "validation": ["validation/include"],
     "tools": ["tools/cvtplant"],
     # The template controller project: a downstream user of the installed package.
@@ -33,8 +34,9 @@ ALLOWED = {
     "hil": ["lib", "port"],
     "analysis": ["lib"],
     "mbd": ["lib"],
+    "fmu": ["lib"],
     "validation": ["lib", "analysis", "mbd"],
-    "tools": ["lib", "port", "hil", "analysis", "mbd", "validation"],
+    "tools": ["lib", "port", "hil", "analysis", "mbd", "validation", "fmu"],
     "examples": ["lib", "port", "hil"],
 }
 # What a module's own tests may include besides: hil's tests run the
@@ -46,6 +48,7 @@ SOURCE_DIRS = {
     "hil": ["hil"],
     "analysis": ["analysis/include", "analysis/src"],
     "mbd": ["mbd/include", "mbd/src"],
+    "fmu": ["fmu/include", "fmu/src"],
     "validation": ["validation/include", "validation/src"],
     "tools": ["tools/cvtplant"],
     "examples": ["examples"],
@@ -53,7 +56,7 @@ SOURCE_DIRS = {
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 # The command-line parser belongs to the programs (tools/, hil/'s): a library
 # module that included it could only be driven through a subprocess.
-NO_CLI = ("lib", "port", "analysis", "mbd", "validation")
+NO_CLI = ("lib", "port", "analysis", "mbd", "validation", "fmu")
 CLI_INCLUDE = re.compile(r'^\s*#\s*include\s+<CLI/', re.M)
 
 

@@ -53,11 +53,13 @@ struct RomConstants : RomTensionConstants<T, RomLayout<F>::kTension>, RomRippleC
   };
   Accounting acc;  // the energy ledger's copies, in the accounting type
   double two_tan_b0_si = 0.0;  // 2 tan(beta0), set-up copy for set_driven_clamp
+  double driven_clamp_si_N = 0.0;  // the driven clamping F_ax2 in N, as reported (RomOutputs)
 
   // The driven (secondary) clamping F_ax2 [N] the radial row and the ledger
   // use (docs/rom.md#driven-clamping); the same products as the set-up, so
   // the set-up value gives the same bits.
   void set_driven_clamp(double f_N) {
+    driven_clamp_si_N = f_N;
     driven_force = T(two_tan_b0_si * f_N);
     acc.driven_force = A(two_tan_b0_si * f_N);
   }
@@ -151,6 +153,7 @@ struct RomConstants : RomTensionConstants<T, RomLayout<F>::kTension>, RomRippleC
       cr = T(p.radial_damping_Ns_m);
       two_tan_b0_si = 2.0 * tb;
       driven_force = T(2.0 * tb * p.driven_clamp_N);
+      driven_clamp_si_N = p.driven_clamp_N;
       travel = T(p.radial_travel_m);
       k_stop = T(p.radial_stop_N_m);
       acc.k_stop = A(p.radial_stop_N_m);

@@ -26,6 +26,11 @@ struct RomOutputs {
   T creep_strain{};                        // dT / (kL + T_s)
   bool stick1 = false, stick2 = false;
   bool sheave_on_stop = false;             // tension: the driver sheave on its stop (or fixed), T_1 = T_stop
+  // Wedging (docs/rom.md#driven-clamping, #end-stop; else 0 and false): the
+  // driven clamping force F_ax2, and the chain pressed into a ratio end stop,
+  // at the driver's smallest radius (underdrive) or its largest (overdrive).
+  T driven_clamp_force_N{};
+  bool stop_underdrive = false, stop_overdrive = false;
 };
 
 // The outputs of `plant` (a CvtRom) at state x with its current inputs.
@@ -75,6 +80,10 @@ inline RomOutputs<typename Plant::Scalar> rom_outputs(const Plant& plant,
     o.friction2_N = w.F2;
     o.radial_friction1_N = w.Fr1;
     o.radial_friction2_N = w.Fr2;
+    o.driven_clamp_force_N = T(c.driven_clamp_si_N);
+    const T pen = plant.stop_penetration(x(L::kRho));
+    o.stop_overdrive = pen > T(0);
+    o.stop_underdrive = pen < T(0);
   } else {
     o.friction1_N = lump_friction(friction_characteristic(c.friction, o.v_rel1_m_s), normal_force(fax, c.load1));
     o.friction2_N = lump_friction(friction_characteristic(c.friction, o.v_rel2_m_s), normal_force(fax, c.load2));

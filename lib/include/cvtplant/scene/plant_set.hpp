@@ -66,6 +66,28 @@ struct RomPlantSet {
     (void)((features == Masks ? (sim = ::new (storage) ErasedRomSimulator<T, Masks>(p, c), true) : false) || ...);
     return sim;
   }
+
+  // Calls f(plant) with `sim`, a plant build() made, as its concrete
+  // ErasedRomSimulator<T, F> (F = sim.features()): what copies a whole
+  // simulator, its state, cached contact, ledger, actuators, fault and frame
+  // count, for a rollback that continues bit-identically (the FMU's state,
+  // fmu/). False, without calling f, if the set has no plant of its features.
+  template <class Sim, class Fn>
+  static bool visit(Sim& sim, Fn&& f) {
+    static_assert(std::is_same<std::remove_const_t<Sim>, IRomSimulator<T>>::value, "a plant of this set");
+    const std::uint32_t features = sim.features();
+    return ((features == Masks ? (f(concrete<Masks>(sim)), true) : false) || ...);
+  }
+
+ private:
+  template <std::uint32_t F>
+  static ErasedRomSimulator<T, F>& concrete(IRomSimulator<T>& sim) {
+    return static_cast<ErasedRomSimulator<T, F>&>(sim);
+  }
+  template <std::uint32_t F>
+  static const ErasedRomSimulator<T, F>& concrete(const IRomSimulator<T>& sim) {
+    return static_cast<const ErasedRomSimulator<T, F>&>(sim);
+  }
 };
 
 // Whether a fixed-point plant can take the scene's declared values: every
