@@ -20,6 +20,7 @@ Usage: test_seed_section4_reference_cli.py CVTPLANT TMPDIR
 """
 import json
 import os
+import shutil
 import subprocess
 import sys
 
@@ -62,6 +63,8 @@ def main():
     os.makedirs(tmp, exist_ok=True)
     bad_input(binary, tmp)
     out = os.path.join(tmp, "case1")
+    # A fresh cache: the runs are computed, not read back from an earlier build.
+    shutil.rmtree(out, ignore_errors=True)
     cmd = [binary, "analyze", "seed-section4", "--reference", "--case", "1", "--steady", "60", "--points", "1000",
            "--t-transient", "1", "--convergence", "10", "--surrogates", "5", "--benettin", "0.2",
            "--signals", "F_ax1_N,omega1_rad_s",
