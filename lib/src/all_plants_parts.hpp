@@ -8,28 +8,22 @@
 
 namespace cvt::all_plants_detail {
 
-// Masks 0..7: the core plant with axial, road load and deformation.
+// Each part builds the plants of its set (all_plants.hpp).
 template <class T>
 IRomSimulator<T>* build_low(std::uint32_t features, const RomParams& p, const RomSimConfig& c, void* storage) {
-  return RomPlantSet<T, 0, 1, 2, 3, 4, 5, 6, 7>::build(features, p, c, storage);
+  return LowPlants<T>::build(features, p, c, storage);
 }
-// Masks 8..15: the same with polygon.
 template <class T>
 IRomSimulator<T>* build_polygon(std::uint32_t features, const RomParams& p, const RomSimConfig& c, void* storage) {
-  return RomPlantSet<T, 8, 9, 10, 11, 12, 13, 14, 15>::build(features, p, c, storage);
+  return PolygonPlants<T>::build(features, p, c, storage);
 }
-// Masks 17..31 (odd): wedging, floating point only.
 template <class T>
 IRomSimulator<T>* build_wedging(std::uint32_t features, const RomParams& p, const RomSimConfig& c, void* storage) {
-  return RomPlantSet<T, 17, 19, 21, 23, 25, 27, 29, 31>::build(features, p, c, storage);
+  return WedgingPlants<T>::build(features, p, c, storage);
 }
-
-// Masks 32..39: tension with axial, road load and deformation (docs/rom.md#tension);
-// mask 40, tension with polygon, for the link-passing ripple's scene
-// (tools/scenes/seed-case1-ripple.toml, docs/rom.md#link-ripple).
 template <class T>
 IRomSimulator<T>* build_tension(std::uint32_t features, const RomParams& p, const RomSimConfig& c, void* storage) {
-  return RomPlantSet<T, 32, 33, 34, 35, 36, 37, 38, 39, 40>::build(features, p, c, storage);
+  return TensionPlants<T>::build(features, p, c, storage);
 }
 
 // Instantiated in the part translation units only.

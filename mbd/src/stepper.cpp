@@ -49,7 +49,7 @@ std::string at_time(double t, const std::string& q) {
 
 }  // namespace
 
-Stepper::Stepper(const MbdParams& params, const StepperOptions& options) : opt_(options) {
+void Stepper::build(const MbdParams& params) {
   if (!(opt_.frame_s > 0 && opt_.frame_s <= 1.0)) throw std::invalid_argument("stepper: frame in (0, 1] s");
   if (!(opt_.rtol > 0 && opt_.rtol < 1)) throw std::invalid_argument("stepper: rtol in (0, 1)");
   if (!(opt_.settle_rtol > 0 && opt_.settle_rtol < 1)) throw std::invalid_argument("stepper: settle rtol in (0, 1)");
@@ -58,12 +58,31 @@ Stepper::Stepper(const MbdParams& params, const StepperOptions& options) : opt_(
   model_ = std::make_unique<ChainModel>(params);  // std::invalid_argument for bad parameters
   solver_ = std::make_unique<Solver>();
   y_ = model_->initial_state();
+  start_.states = model_->size();
+  start_.jacobian_nnz = model_->pattern().nnz();
+}
+
+Stepper::Stepper(const MbdParams& params, const StepperOptions& options, const Snapshot& release) : opt_(options) {
+  build(params);
+  if (release.y.size() != y_.size()) throw std::invalid_argument("stepper: release snapshot of another model");
+  if (release.t_s != 0.0) throw std::invalid_argument("stepper: a release snapshot is taken at t = 0");
+  y_ = release.y;
+  in_ = release.inputs;
+  if (release.outputs.fault != StepFault::none) {
+    fail(release.outputs.fault, release.fault_what);
+    return;
+  }
+  release_at(params);
+  // As save() does to the stepper the snapshot came from.
+  if (solver_->integ && !faulted()) solver_->integ->reinit(0.0, y_.data());
+}
+
+Stepper::Stepper(const MbdParams& params, const StepperOptions& options) : opt_(options) {
+  build(params);
   in_.clamp1_N = model_->clamp_force(0, 0.0);
   in_.clamp2_N = model_->clamp_force(1, 0.0);
   in_.tau_in_Nm = params.tau_in_Nm.at(0.0);
   in_.tau_load_Nm = params.tau_load_Nm.at(0.0);
-  start_.states = model_->size();
-  start_.jacobian_nnz = model_->pattern().nnz();
   try {
     RunOptions ro;
     ro.settle_rtol = opt_.settle_rtol;
@@ -85,6 +104,11 @@ Stepper::Stepper(const MbdParams& params, const StepperOptions& options) : opt_(
       }
     in_.clamp1_N = n > 0 ? sum / n : model_->sample(0.0, y_.data()).F_ax_N[0];
   }
+  release_at(params);
+}
+
+// The release (t = 0): the loads of the run, the ledger from here, the BDF.
+void Stepper::release_at(const MbdParams& params) {
   model_->set_phase(ChainModel::Phase::run);
   if (params.hold1.active) y_[static_cast<std::size_t>(model_->pulley_speed(0))] = params.hold1.omega_rad_s;
   if (params.hold2.active) y_[static_cast<std::size_t>(model_->pulley_speed(1))] = params.hold2.omega_rad_s;

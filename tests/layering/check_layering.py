@@ -21,6 +21,7 @@ INCLUDE_DIRS = {
     "mbd": ["mbd/include"],
     "fmu": ["fmu/include"],
     "validation": ["validation/include"],
+    "cosim": ["cosim/include"],
     "tools": ["tools/cvtplant"],
     # The template controller project: a downstream user of the installed package.
     "examples": ["examples/controller-c"],
@@ -36,7 +37,11 @@ ALLOWED = {
     "mbd": ["lib"],
     "fmu": ["lib"],
     "validation": ["lib", "analysis", "mbd"],
-    "tools": ["lib", "port", "hil", "analysis", "mbd", "validation", "fmu"],
+    # The reference behind the bridge and the closed-loop comparison: the
+    # bus (hil/, port/), the reference (mbd/) and the scene mapping
+    # (validation/). Host only; hil/ never includes it.
+    "cosim": ["lib", "port", "hil", "mbd", "validation"],
+    "tools": ["lib", "port", "hil", "analysis", "mbd", "validation", "fmu", "cosim"],
     "examples": ["lib", "port", "hil"],
 }
 # What a module's own tests may include besides: hil's tests run the
@@ -50,13 +55,14 @@ SOURCE_DIRS = {
     "mbd": ["mbd/include", "mbd/src"],
     "fmu": ["fmu/include", "fmu/src"],
     "validation": ["validation/include", "validation/src"],
+    "cosim": ["cosim/include", "cosim/src"],
     "tools": ["tools/cvtplant"],
     "examples": ["examples"],
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 # The command-line parser belongs to the programs (tools/, hil/'s): a library
 # module that included it could only be driven through a subprocess.
-NO_CLI = ("lib", "port", "analysis", "mbd", "validation", "fmu")
+NO_CLI = ("lib", "port", "analysis", "mbd", "validation", "fmu", "cosim")
 CLI_INCLUDE = re.compile(r'^\s*#\s*include\s+<CLI/', re.M)
 
 

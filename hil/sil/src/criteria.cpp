@@ -11,6 +11,18 @@ std::string fmt(const char* f, double a, double b, double c) {
   return buf;
 }
 
+Check measured(std::string name, bool pass, std::string detail, double value, double limit) {
+  Check c{std::move(name), pass, std::move(detail)};
+  c.value = value;
+  c.limit = limit;
+  return c;
+}
+
+std::string plant_fault_reason(const cvt::can::PlantDiag& diag, const std::string& message) {
+  std::string r = std::string(cvt::can::to_string(diag.plant_fault)) + " (PlantDiag.plant_fault)";
+  return message.empty() ? r : r + ": " + message;
+}
+
 bool in_window(double t, double start, double end) { return start >= 0 && t >= start - 1e-9 && t < end - 1e-9; }
 
 double grew(std::uint16_t now, std::uint16_t then) { return static_cast<std::uint16_t>(now - then); }
@@ -85,11 +97,12 @@ void ratio_checks(const Scenario& sc, const std::vector<Sample>& trace, std::vec
   }
   const double rms = judged > 0 ? std::sqrt(sum_sq / judged) : 0.0;
   const double run_rms = run_n > 0 ? std::sqrt(run_sum_sq / run_n) : 0.0;
-  c.push_back({"ratio_tracked", judged > 0 && max_err <= sc.track_bound,
-               fmt("max |ratio - set-point| %.4f at t = %.2f s, ", max_err, max_err_t) +
-                   fmt("RMS %.4f over %.0f settled samples (limit ", rms, judged) +
-                   fmt("%.3f, set-point held >= %.1f s); ", sc.track_bound, sc.settle_s) +
-                   fmt("whole run max %.4f RMS %.4f", run_max, run_rms)});
+  c.push_back(measured("ratio_tracked", judged > 0 && max_err <= sc.track_bound,
+                       fmt("max |ratio - set-point| %.4f at t = %.2f s, ", max_err, max_err_t) +
+                           fmt("RMS %.4f over %.0f settled samples (limit ", rms, judged) +
+                           fmt("%.3f, set-point held >= %.1f s); ", sc.track_bound, sc.settle_s) +
+                           fmt("whole run max %.4f RMS %.4f", run_max, run_rms),
+                       judged > 0 ? max_err : NAN, sc.track_bound));
   if (sc.expect_end_stop && sc.t_end_s < sc.end_stops_by_s) {
     c.push_back({"end_stops_reached", true,
                  fmt("not judged: the run was cut at %.1f s, before the set-points beyond the stops (up to %.1f s)",
@@ -106,13 +119,15 @@ void ratio_checks(const Scenario& sc, const std::vector<Sample>& trace, std::vec
         peak = std::fmax(peak, std::fabs(s.slip));
       if (s.t_s >= sc.clamp_drop_end_s && recovered < 0 && std::fabs(s.slip) <= 0.02) recovered = s.t_s;
     }
-    c.push_back({"slip_seen_in_drop", peak > 0.02,
-                 fmt("max |slip| %.4f in the drop and the %.1f s after it (the drop must be felt: > 0.02)", peak,
-                     kRecovery_s)});
-    c.push_back({"slip_bounded_in_drop", peak <= 0.30, fmt("max |slip| %.4f (limit 0.30)", peak)});
-    c.push_back({"slip_recovered", recovered >= 0 && recovered <= sc.clamp_drop_end_s + kRecovery_s,
-                 fmt("|slip| <= 0.02 again at %.2f s (supply back at %.2f s, limit + ", recovered,
-                     sc.clamp_drop_end_s) + fmt("%.1f s)", kRecovery_s)});
+    c.push_back(measured("slip_seen_in_drop", peak > 0.02,
+                         fmt("max |slip| %.4f in the drop and the %.1f s after it (the drop must be felt: > 0.02)",
+                             peak, kRecovery_s),
+                         peak, 0.02));
+    c.push_back(measured("slip_bounded_in_drop", peak <= 0.30, fmt("max |slip| %.4f (limit 0.30)", peak), peak, 0.30));
+    c.push_back(measured("slip_recovered", recovered >= 0 && recovered <= sc.clamp_drop_end_s + kRecovery_s,
+                         fmt("|slip| <= 0.02 again at %.2f s (supply back at %.2f s, limit + ", recovered,
+                             sc.clamp_drop_end_s) + fmt("%.1f s)", kRecovery_s),
+                         recovered >= 0 ? recovered - sc.clamp_drop_end_s : NAN, kRecovery_s));
   }
 }
 
@@ -127,11 +142,12 @@ void motion_checks(const Scenario& sc, const std::vector<Sample>& trace, std::ve
       min_sf_t = s.t_s;
     }
   }
-  c.push_back({"slip_bounded", max_slip <= sc.slip_bound,
-               fmt("max |slip| %.4f (limit %.2f)", max_slip, sc.slip_bound)});
+  c.push_back(measured("slip_bounded", max_slip <= sc.slip_bound,
+                       fmt("max |slip| %.4f (limit %.2f)", max_slip, sc.slip_bound), max_slip, sc.slip_bound));
   if (sc.ratio_target) ratio_checks(sc, trace, c);
-  c.push_back({"no_gross_slip", min_sf >= 1.05,
-               fmt("min torque-capacity safety factor %.3f at t = %.2f s (limit 1.05)", min_sf, min_sf_t)});
+  c.push_back(measured("no_gross_slip", min_sf >= 1.05,
+                       fmt("min torque-capacity safety factor %.3f at t = %.2f s (limit 1.05)", min_sf, min_sf_t),
+                       min_sf < 1e9 ? min_sf : NAN, 1.05));
 }
 
 namespace {
@@ -166,11 +182,14 @@ void outage_checks(const Scenario& sc, const std::vector<Sample>& trace, const L
   const double expect = outage_start - kPeriod_s + 0.05;
   c.push_back({"timeout_flag_on_outage", first_flag >= expect - 1e-9 && first_flag <= expect + kPeriod_s + 1e-9,
                fmt("fault_cmd_timeout first at %.3f s (expected within 10 ms after %.3f s)", first_flag, expect)});
-  c.push_back({"no_force_step_on_timeout", max_rise <= 1.2 * ramp_N,
-               fmt("largest rise of the axial force per 10 ms while timed out %.0f N (ramp %.0f N per 10 ms)",
-                   max_rise, ramp_N)});
-  c.push_back({"timeout_reaction_raises_clamp", axial_at_100ms >= axial_before + 0.5 * ramp_N * 10.0,
-               fmt("axial force %.0f N 100 ms after the timeout, %.0f N before it", axial_at_100ms, axial_before)});
+  c.push_back(measured("no_force_step_on_timeout", max_rise <= 1.2 * ramp_N,
+                       fmt("largest rise of the axial force per 10 ms while timed out %.0f N (ramp %.0f N per 10 ms)",
+                           max_rise, ramp_N),
+                       max_rise, 1.2 * ramp_N));
+  c.push_back(measured("timeout_reaction_raises_clamp", axial_at_100ms >= axial_before + 0.5 * ramp_N * 10.0,
+                       fmt("axial force %.0f N 100 ms after the timeout, %.0f N before it", axial_at_100ms,
+                           axial_before),
+                       axial_at_100ms - axial_before, 0.5 * ramp_N * 10.0));
   c.push_back({"flag_clears_on_recovery", cleared > 0 && cleared <= outage_end + 0.02 + 1e-9,
                fmt("cleared at %.3f s (controller back at %.3f s)", cleared, outage_end)});
   c.push_back({"timeout_counted_once", n.cmd_timeouts == 1, fmt("PlantDiag.cmd_timeouts grew by %.0f", n.cmd_timeouts)});
@@ -179,8 +198,9 @@ void outage_checks(const Scenario& sc, const std::vector<Sample>& trace, const L
     // clamp only rises while the ramp runs (a re-applied stale command
     // would pull it back down every 50 ms).
     const double frozen_frames = std::round((fx.freeze_end_s - fx.freeze_start_s) / kPeriod_s);
-    c.push_back({"stale_command_never_reapplied", max_drop <= 1.0,
-                 fmt("largest drop of the axial force per 10 ms while timed out %.0f N", max_drop)});
+    c.push_back(measured("stale_command_never_reapplied", max_drop <= 1.0,
+                         fmt("largest drop of the axial force per 10 ms while timed out %.0f N", max_drop), max_drop,
+                         1.0));
     c.push_back({"repeated_frames_rejected", n.rejected_frames == frozen_frames,
                  fmt("PlantDiag.rejected_frames grew by %.0f (%.0f repeated frames sent)", n.rejected_frames,
                      frozen_frames)});
@@ -192,9 +212,14 @@ void outage_checks(const Scenario& sc, const std::vector<Sample>& trace, const L
 void lockstep_checks(const Scenario& sc, const std::vector<Sample>& trace, const LockstepCounts& n,
                      std::vector<Check>& c) {
   const Faults& fx = sc.faults;
-  c.push_back({"bridge_answered_every_step", n.no_reply == 0 && trace.size() == static_cast<size_t>(n.periods),
+  // A plant that stopped ends the run there (docs/sil.md#plant-faults):
+  // the bridge answered every step until then; no_watchdog_fault fails.
+  const bool stopped = n.plant_fault_s >= 0;
+  c.push_back({"bridge_answered_every_step",
+               n.no_reply == 0 && (stopped || trace.size() == static_cast<size_t>(n.periods)),
                fmt("%.0f of %.0f periods answered, %.0f requests sent again", static_cast<double>(trace.size()),
-                   n.periods, n.resends)});
+                   n.periods, n.resends) +
+                   (stopped ? fmt("; the run stopped at the plant fault at t = %.3f s", n.plant_fault_s) : "")});
   c.push_back({"lockstep_time_exact", n.bad_time == 0 && n.bad_mode == 0,
                fmt("%.0f groups with sim_time_us != 10000 k, %.0f not in LockStep", n.bad_time, n.bad_mode)});
   c.push_back({"frames_valid", n.harness_rejected == 0 && n.controller_rejected <= 0,
@@ -204,7 +229,9 @@ void lockstep_checks(const Scenario& sc, const std::vector<Sample>& trace, const
                    : fmt("harness rejected %.0f, controller rejected %.0f", n.harness_rejected,
                          n.controller_rejected)});
   motion_checks(sc, trace, c);
-  c.push_back({"no_watchdog_fault", !any_watchdog(trace), any_watchdog(trace) ? "plant watchdog fault" : "none"});
+  c.push_back({"no_watchdog_fault", !any_watchdog(trace) && !stopped,
+               stopped ? fmt("plant fault at t = %.3f s: ", n.plant_fault_s) + n.plant_fault
+                       : (any_watchdog(trace) ? "plant watchdog fault" : "none")});
   if (sc.link_loss_start_s >= 0 || fx.freeze_start_s >= 0) {
     outage_checks(sc, trace, n, c);
   } else {
@@ -238,6 +265,17 @@ void lockstep_checks(const Scenario& sc, const std::vector<Sample>& trace, const
                  fmt("PlantCmdDiag.cmd_superseded grew by %.0f (expected %.0f: all but the last of each period)",
                      n.superseded, expect)});
   }
+}
+
+void partial_not_judged(const Scenario& sc, std::vector<Check>& checks) {
+  if (!(sc.t_end_s < sc.min_t_end_s - 1e-9)) return;
+  for (Check& c : checks)
+    if (c.judged && !partial_criterion(c.name)) {
+      c.judged = false;
+      c.detail = fmt("not judged, the run was cut at %.2f s (the scenario needs %.1f s): ", sc.t_end_s,
+                     sc.min_t_end_s) +
+                 c.detail;
+    }
 }
 
 void not_judged_from(std::vector<Check>& c, std::size_t from) {

@@ -82,10 +82,16 @@ HarnessNode::Reply HarnessNode::wait_status(std::uint8_t seq, std::int64_t timeo
   const std::int64_t end = clock_.now_ns() + timeout_ns;
   for (;;) {
     const std::int64_t left = end - clock_.now_ns();
-    if (left <= 0) return Reply::None;
     CanFrame f;
-    const CanIoStatus st = bus_.receive(f, on_idle_ ? 0 : left);
-    if (st == CanIoStatus::Timeout && on_idle_) on_idle_();
+    // What is already queued is read before the time is up: a plant in this
+    // process (on_idle) answers while it is serviced, however long its step
+    // took; only an answer that never came is a lost one.
+    const CanIoStatus st = bus_.receive(f, on_idle_ || left <= 0 ? 0 : left);
+    if (st == CanIoStatus::Timeout) {
+      if (left <= 0) return Reply::None;
+      if (on_idle_) on_idle_();
+      continue;
+    }
     if (st != CanIoStatus::Ok || !take(f)) continue;
     if (status_.step_seq_ack != seq) continue;
     if (speeds_.sample_tag != status_.sample_tag || ratio_.sample_tag != status_.sample_tag ||

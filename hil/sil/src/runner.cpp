@@ -27,6 +27,12 @@ Capacity plant_capacity(const HarnessNode& h, std::vector<Check>& missing) {
 // that uses neither sends none.
 bool sends_load(const Scenario& sc) { return sc.load_override || sc.clamp_drop_start_s >= 0; }
 
+bool plant_stopped(const cvt::can::PlantStatus& st) {
+  return st.fault_watchdog || st.plant_mode == cvt::can::PlantMode::Fault;
+}
+
+std::string fault_message(const RunConfig& cfg) { return cfg.plant != nullptr ? cfg.plant->fault_message() : ""; }
+
 }  // namespace
 
 ScenarioResult run_lockstep(const Scenario& sc, HarnessNode& h, FaultInjector& hf, ControllerUnderTest& ctl,
@@ -64,12 +70,21 @@ ScenarioResult run_lockstep(const Scenario& sc, HarnessNode& h, FaultInjector& h
       break;
     }
     ctl.after_step();
+    if (cfg.on_period) cfg.on_period(t + kPeriod_s);
     expect_us += kFramesPerPeriod * 1000;
     const cvt::can::PlantStatus& st = h.status();
-    if (st.sim_time_us != expect_us) ++n.bad_time;
-    if (st.plant_mode != cvt::can::PlantMode::LockStep) ++n.bad_mode;
     trace.push_back(sample_of(sc, capacity, st.sim_time_us * 1e-6, t, st,
                               GroupView{h.speeds(), h.ratio(), h.forces(), h.shift()}, ctl.commands()));
+    // A plant that stopped (docs/sil.md#plant-faults) ends the run: it would
+    // answer every further Step without moving. Its reason came with this
+    // group (PlantDiag is in the group that first shows the fault).
+    if (plant_stopped(st)) {
+      n.plant_fault_s = st.sim_time_us * 1e-6;
+      n.plant_fault = plant_fault_reason(h.diag(), fault_message(cfg));
+      break;
+    }
+    if (st.sim_time_us != expect_us) ++n.bad_time;
+    if (st.plant_mode != cvt::can::PlantMode::LockStep) ++n.bad_mode;
   }
   ctl.end_run();
   // The closing diagnostics (SimCtrl None answers with them).
@@ -95,6 +110,8 @@ ScenarioResult run_lockstep(const Scenario& sc, HarnessNode& h, FaultInjector& h
   res.checks.insert(res.checks.end(), missing.begin(), missing.end());
   lockstep_checks(sc, trace, n, res.checks);
   ctl.add_checks(sc, res.checks);
+  partial_not_judged(sc, res.checks);
+  res.trace = std::move(trace);
   return res;
 }
 
@@ -170,8 +187,9 @@ ScenarioResult run_realtime(const Scenario& sc, HarnessNode& h, ControllerUnderT
                    fmt("PlantDiag.rejected_frames grew by %.0f (at most 2 counter jumps per command timeout: %.0f "
                        "timeouts)",
                        plant_rejected, timeouts)});
-  const bool watchdog = any_watchdog(trace) || h.status().fault_watchdog;
-  c.push_back({"no_watchdog_fault", !watchdog, watchdog ? "plant watchdog fault" : "none"});
+  const bool watchdog = any_watchdog(trace) || plant_stopped(h.status());
+  c.push_back({"no_watchdog_fault", !watchdog,
+               watchdog ? "plant fault: " + plant_fault_reason(h.diag(), fault_message(cfg)) : "none"});
   ctl.add_checks(sc, c);
   // Judged when the plant kept time.
   const std::size_t full_from = c.size();
@@ -180,6 +198,8 @@ ScenarioResult run_realtime(const Scenario& sc, HarnessNode& h, ControllerUnderT
   c.push_back({"no_cmd_timeout", !timeout_seen && timeouts == 0,
                timeout_seen ? fmt("fault_cmd_timeout raised, PlantDiag.cmd_timeouts grew by %.0f", timeouts) : "none"});
   if (!kept_time) not_judged_from(c, full_from);
+  partial_not_judged(sc, c);
+  res.trace = std::move(trace);
   return res;
 }
 

@@ -1,6 +1,8 @@
 // The scenario table (docs/sil.md#scenarios, #ratio-scenarios, #fault-scenarios).
 #include "cvtplant/sil/harness/scenario.hpp"
 
+#include <cstdio>
+
 namespace cvt::sil::harness {
 
 float ramp(double t, double t0, double t1, float a, float b) {
@@ -107,6 +109,59 @@ std::vector<Scenario> scenarios() {
   fl.min_t_end_s = 1.2;
   v.push_back(fl);
   return v;
+}
+
+std::string select_scenarios(const std::string& list, double t_end_s, std::vector<Scenario>& out,
+                             const std::function<bool(const Scenario&, std::string& why)>& accept,
+                             std::vector<std::string>* left_out, const std::string& refusal_prefix, bool partial) {
+  std::vector<std::string> names;
+  for (std::size_t p = 0; p <= list.size();) {
+    const std::size_t q = list.find(',', p);
+    names.push_back(list.substr(p, q == std::string::npos ? std::string::npos : q - p));
+    p = q == std::string::npos ? list.size() + 1 : q + 1;
+  }
+  const std::vector<Scenario> all = scenarios();
+  for (const std::string& n : names) {
+    bool found = false;
+    for (const Scenario& s : all) found = found || n == "all" || n == s.name;
+    if (!found || n.empty()) return "--scenario: expected " + scenario_names() + ", got '" + n + "'";
+  }
+  for (const Scenario& s : all) {
+    bool want = false;
+    for (const std::string& n : names) want = want || n == "all" || n == s.name;
+    if (!want) continue;
+    std::string why;
+    if (accept && !accept(s, why)) {
+      if (list == "all") {
+        if (left_out != nullptr) left_out->push_back(s.name);
+        continue;
+      }
+      return refusal_prefix + why;
+    }
+    Scenario c = s;
+    if (t_end_s > 0 && t_end_s < c.t_end_s) {
+      if (t_end_s < c.min_t_end_s && !partial) {
+        char buf[200];
+        std::snprintf(buf, sizeof buf,
+                      "--t-end: %s needs at least %.1f s to judge its criteria, got %g (--allow-partial: its first "
+                      "seconds only)",
+                      s.name, c.min_t_end_s, t_end_s);
+        return buf;
+      }
+      c.t_end_s = t_end_s;
+    }
+    out.push_back(c);
+  }
+  return "";
+}
+
+bool partial_criterion(const std::string& name) {
+  static const char* const kAnyLength[] = {"trace_written",   "plant_parameters_published", "bridge_answered_every_step",
+                                           "lockstep_time_exact", "frames_valid",          "slip_bounded",
+                                           "no_gross_slip",   "no_watchdog_fault",          "no_cmd_timeout"};
+  for (const char* n : kAnyLength)
+    if (name == n) return true;
+  return false;
 }
 
 std::string scenario_names() {

@@ -21,6 +21,7 @@
 #include "cvtplant/port/socketcan_transport.hpp"
 #include "cvtplant/sil/harness/child_process.hpp"
 #include "cvtplant/sil/harness/example_controller.hpp"
+#include "cvtplant/sil/harness/extensions.hpp"
 #include "cvtplant/sil/harness/external_controller.hpp"
 #include "cvtplant/sil/harness/report.hpp"
 #include "cvtplant/sil/harness/runner.hpp"
@@ -33,7 +34,8 @@ const char kUsage[] =
     "usage: cvtplant-sil run   [--iface NAME|--loopback] [--scenario NAME[,NAME...]|all] [--out DIR] [--junit FILE]\n"
     "                          [--mode lockstep|realtime|both] [--t-end S] [--reply-timeout-ms T]\n"
     "                          [--controller example|external] [--controller-cmd CMD] [--controller-timeout-ms T]\n"
-    "                          [--plant-cmd CMD] [--safety X] [--loopback-frame-cost-us US]\n"
+    "                          [--plant NAME] [--plant-option NAME=VALUE]... [--plant-cmd CMD] [--safety X]\n"
+    "                          [--loopback-frame-cost-us US]\n"
     "       cvtplant-sil bench [--iface NAME|--loopback] [--steps N] [--with-controller] [--reply-timeout-ms T]\n"
     "Plays the SIL scenarios against a plant on a CAN bus and a controller under test,\n"
     "judges their criteria and writes CSV traces and a JUnit report (docs/sil.md).\n"
@@ -51,6 +53,8 @@ const char kUsage[] =
     "  --t-end S           cut every scenario at S s of simulated time (at least each scenario's\n"
     "                      shortest run that still judges every criterion; an end-stop criterion\n"
     "                      beyond the cut is reported as not judged)\n"
+    "  --allow-partial     --t-end may cut below that: the scenario's first seconds, judged on\n"
+    "                      the bus, slip, safety factor, watchdog and timeout only (the rest not judged)\n"
     "  --controller C      example (default): the example controller, run by the harness;\n"
     "                      external: a controller on the bus (docs/sil.md#external-lockstep): each\n"
     "                      period the harness sends HarnessDemand and waits for its CtrlCmd\n"
@@ -62,6 +66,10 @@ const char kUsage[] =
     "                      --controller external\n"
     "  --controller-timeout-ms T  lock-step: how long to wait for the controller's commands of a\n"
     "                      period (default 1000; the first period of a run waits at least 10 s)\n"
+    "  --plant NAME        the plant the scenarios run against (docs/sil.md#plants), default rom:\n"
+    "                      with --loopback in this process; on an interface the plant's bridge\n"
+    "                      program must be on the bus (or started with --plant-cmd)\n"
+    "  --plant-option NAME=VALUE  a setting of the --plant (below), repeatable\n"
     "  --plant-cmd CMD     start CMD (sh -c) as the plant, e.g. 'cvtplant-bridge --iface vcan0',\n"
     "                      wait until it answers (30 s at most) and stop it after the runs; its\n"
     "                      output into DIR/plant.log\n"
@@ -94,18 +102,37 @@ double number(const std::string& flag, const std::string& v, double lo, double h
 
 }  // namespace
 
+void print_usage() {
+  std::fputs(kUsage, stdout);
+  for (const Subcommand& c : subcommands()) std::fputs(c.usage.c_str(), stdout);
+  std::printf("Plants (--plant):\n");
+  for (const PlantKind& k : plant_kinds()) {
+    std::printf("  %-19s %s\n", k.name.c_str(), k.what.c_str());
+    std::fputs(k.options_usage.c_str(), stdout);
+  }
+}
+
+std::string subcommand_names() {
+  std::string n = "run, bench";
+  for (const Subcommand& c : subcommands()) n += ", " + c.name;
+  return n;
+}
+
 int main(int argc, char** argv) {
-  if (argc < 2) bad_usage("missing subcommand run or bench");
+  if (argc < 2) bad_usage("missing subcommand (" + subcommand_names() + ")");
   const std::string cmd = argv[1];
   if (cmd == "-h" || cmd == "--help") {
-    std::fputs(kUsage, stdout);
+    print_usage();
     return 0;
   }
-  if (cmd != "run" && cmd != "bench") bad_usage("unknown subcommand '" + cmd + "'");
+  for (const Subcommand& c : subcommands())
+    if (cmd == c.name) return c.main(argc, argv);
+  if (cmd != "run" && cmd != "bench") bad_usage("unknown subcommand '" + cmd + "' (" + subcommand_names() + ")");
   std::string iface = "vcan0", scenario = "all", out_dir = ".", junit, mode = "lockstep", controller = "example";
-  std::string controller_cmd, plant_cmd;
+  std::string controller_cmd, plant_cmd, plant_name = "rom";
+  std::vector<std::string> plant_options;
   long steps = 5000;
-  bool with_controller = false, loopback = false, safety_given = false;
+  bool with_controller = false, loopback = false, safety_given = false, allow_partial = false;
   double reply_timeout_ms = 0;  // 0: the default for the transport
   double t_end_s = 0, controller_timeout_ms = 1000;
   std::int64_t frame_cost_ns = 0;
@@ -113,17 +140,17 @@ int main(int argc, char** argv) {
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "-h" || a == "--help") {
-      std::fputs(kUsage, stdout);
+      print_usage();
       return 0;
     }
-    if (a == "--with-controller" || a == "--loopback") {
-      (a == "--loopback" ? loopback : with_controller) = true;
+    if (a == "--with-controller" || a == "--loopback" || a == "--allow-partial") {
+      (a == "--loopback" ? loopback : a == "--allow-partial" ? allow_partial : with_controller) = true;
       continue;
     }
     static const char* const kValueFlags[] = {
         "--iface", "--scenario", "--out", "--junit", "--safety", "--steps", "--reply-timeout-ms", "--mode",
         "--loopback-frame-cost-us", "--controller", "--controller-cmd", "--controller-timeout-ms", "--plant-cmd",
-        "--t-end"};
+        "--t-end", "--plant", "--plant-option"};
     bool known = false;
     for (const char* k : kValueFlags) known = known || a == k;
     if (!known) bad_usage("unknown option '" + a + "'");
@@ -135,6 +162,12 @@ int main(int argc, char** argv) {
     else if (a == "--junit") junit = v;
     else if (a == "--controller-cmd") controller_cmd = v;
     else if (a == "--plant-cmd") plant_cmd = v;
+    else if (a == "--plant-option") plant_options.push_back(v);
+    else if (a == "--plant") {
+      plant_name = v;
+      if (find_plant_kind(v) == nullptr)
+        bad_usage("--plant: expected " + plant_kind_names() + " (this build's plants), got '" + v + "'");
+    }
     else if (a == "--loopback-frame-cost-us") frame_cost_ns = static_cast<std::int64_t>(number(a, v, 0, 100000) * 1e3 + 0.5);
     else if (a == "--mode") {
       mode = v;
@@ -165,45 +198,15 @@ int main(int argc, char** argv) {
 
   // The chosen scenarios, in the table's order; an external controller
   // cannot show the faults inside a controller (with all: left out).
-  std::vector<Scenario> chosen;
-  std::vector<std::string> names;
-  for (std::size_t p = 0; p <= scenario.size();) {
-    const std::size_t q = scenario.find(',', p);
-    names.push_back(scenario.substr(p, q == std::string::npos ? std::string::npos : q - p));
-    p = q == std::string::npos ? scenario.size() + 1 : q + 1;
-  }
   ExternalOptions ext_opt;
   ext_opt.answer_timeout_ns = static_cast<std::int64_t>(controller_timeout_ms * 1e6);
-  for (const std::string& n : names) {
-    bool found = false;
-    for (const Scenario& s : scenarios()) found = found || n == "all" || n == s.name;
-    if (!found || n.empty()) bad_usage("--scenario: expected " + scenario_names() + ", got '" + n + "'");
-  }
+  std::vector<Scenario> chosen;
   std::vector<std::string> left_out;
-  for (const Scenario& s : scenarios()) {
-    bool want = false;
-    for (const std::string& n : names) want = want || n == "all" || n == s.name;
-    if (!want) continue;
-    std::string why;
-    if (external && !ExternalController::accepts(s, why)) {
-      if (scenario == "all") {
-        left_out.push_back(s.name);
-        continue;
-      }
-      bad_usage("--controller external: " + why);
-    }
-    Scenario c = s;
-    if (t_end_s > 0 && t_end_s < c.t_end_s) {
-      if (t_end_s < c.min_t_end_s) {
-        char buf[200];
-        std::snprintf(buf, sizeof buf, "--t-end: %s needs at least %.1f s to judge its criteria, got %g", s.name,
-                      c.min_t_end_s, t_end_s);
-        bad_usage(buf);
-      }
-      c.t_end_s = t_end_s;
-    }
-    chosen.push_back(c);
-  }
+  const std::string selection_error = select_scenarios(
+      scenario, t_end_s, chosen,
+      [external](const Scenario& s, std::string& why) { return !external || ExternalController::accepts(s, why); },
+      &left_out, "--controller external: ", allow_partial);
+  if (!selection_error.empty()) bad_usage(selection_error);
   // Real time runs the ratio scenarios (docs/sil.md#ratio-realtime); the
   // fault scenarios need the harness's control of every step.
   const bool lockstep_runs = mode != "realtime", realtime_runs = mode != "lockstep";
@@ -213,7 +216,21 @@ int main(int argc, char** argv) {
         bad_usage("--mode realtime: runs ratio-sweep, kick-down or slip-recovery, not '" + std::string(s.name) + "'");
   if (frame_cost_ns > 0 && (!loopback || !realtime_runs))
     bad_usage("--loopback-frame-cost-us: needs --loopback and --mode realtime or both");
-  if (reply_timeout_ms == 0) reply_timeout_ms = loopback ? 20 : 1000;
+  const PlantKind& kind = *find_plant_kind(plant_name);
+  if (cmd == "bench" && plant_name != "rom") bad_usage("bench: measures the bus with the real-time plant (--plant rom)");
+  if (reply_timeout_ms == 0) reply_timeout_ms = loopback ? 20 : kind.bus_reply_timeout_ms;
+  PlantKindOptions kind_opt;
+  kind_opt.out_dir = out_dir;
+  kind_opt.frame_cost_ns = frame_cost_ns;
+  if (!plant_options.empty() && !loopback)
+    bad_usage("--plant-option: sets the plant in this process (--loopback); a plant on a bus takes its options on "
+              "its own command line");
+  for (const std::string& po : plant_options) {
+    if (!kind.check_option) bad_usage("--plant-option: the plant " + plant_name + " has no options");
+    const std::string why = kind.check_option(po);
+    if (!why.empty()) bad_usage("--plant-option: " + why);
+  }
+  kind_opt.options = plant_options;
   // Traces are part of the result: a directory that cannot be made is an
   // error now, not a silently missing CSV later.
   std::error_code mkdir_error;
@@ -222,6 +239,17 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "cvtplant-sil: --out %s: %s\n", out_dir.c_str(), mkdir_error.message().c_str());
     return 1;
   }
+  // A plant that cannot keep time is not run in real time (docs/sil.md#reference-realtime).
+  if (realtime_runs && kind.realtime_refusal)
+    for (const Scenario& s : chosen) {
+      if (!s.ratio_target) continue;
+      const std::string why = kind.realtime_refusal(s, kind_opt);
+      if (!why.empty()) {
+        std::fprintf(stderr, "cvtplant-sil: --mode %s with --plant %s: %s\n", mode.c_str(), plant_name.c_str(),
+                     why.c_str());
+        return 2;
+      }
+    }
 
   // The nodes: the plant (in-process only with --loopback), the harness and
   // the controller port, each with its own transport: the example
@@ -233,7 +261,7 @@ int main(int argc, char** argv) {
   cvt::port::CanTransport* controller_bus = nullptr;
   if (loopback) {
     loop = std::make_unique<InProcessBus>();
-    plant = std::make_unique<LoopbackBridgePlant>(*loop, frame_cost_ns);
+    plant = kind.in_process(*loop, kind_opt);
     harness_bus = &loop->harness_node();
     controller_bus = &loop->controller_node();
   } else {
@@ -296,6 +324,7 @@ int main(int argc, char** argv) {
   const RealTimeBus rt_bus = plant->realtime();
   RunConfig cfg;
   cfg.out_dir = out_dir;
+  cfg.plant = plant.get();
   std::vector<ScenarioResult> results;
   bool all_pass = true;
   for (const Scenario& s : chosen) {

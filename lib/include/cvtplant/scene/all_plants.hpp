@@ -21,14 +21,42 @@ namespace cvt {
 namespace all_plants_detail {
 template <class T>
 constexpr bool kHasWedging = std::is_floating_point<T>::value;
+
+// The parts of the set, each compiled in translation units of its own
+// (lib/src/all_plants_<scalar>_<part>.cpp); the one place their masks are
+// written.
+// The core plant with axial, road load and deformation.
+template <class T>
+using LowPlants = RomPlantSet<T, 0, 1, 2, 3, 4, 5, 6, 7>;
+// The same with polygon.
+template <class T>
+using PolygonPlants = RomPlantSet<T, 8, 9, 10, 11, 12, 13, 14, 15>;
+// Wedging (which needs axial), with any of road load, deformation and
+// polygon; floating point only.
+template <class T>
+using WedgingPlants = RomPlantSet<T, 17, 19, 21, 23, 25, 27, 29, 31>;
+// Tension with any of axial, road load and deformation (docs/rom.md#tension),
+// and tension with polygon, for the link-passing ripple's scene
+// (tools/scenes/seed-case1-ripple.toml, docs/rom.md#link-ripple).
+template <class T>
+using TensionPlants = RomPlantSet<T, 32, 33, 34, 35, 36, 37, 38, 39, 40>;
+
+// The plant set of the masks of several sets.
+template <class... Sets>
+struct Joined;
+template <class Set>
+struct Joined<Set> {
+  using type = Set;
+};
+template <class T, std::uint32_t... A, std::uint32_t... B, class... Rest>
+struct Joined<RomPlantSet<T, A...>, RomPlantSet<T, B...>, Rest...> : Joined<RomPlantSet<T, A..., B...>, Rest...> {};
+
 // Every mask of scalar T; the storage size and alignment come from this set,
 // the code from lib/src.
 template <class T>
 using Masks = std::conditional_t<kHasWedging<T>,
-                                 RomPlantSet<T, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 17, 19, 21, 23,
-                                             25, 27, 29, 31, 32, 33, 34, 35, 36, 37, 38, 39, 40>,
-                                 RomPlantSet<T, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 32, 33, 34, 35,
-                                             36, 37, 38, 39, 40>>;
+                                 typename Joined<LowPlants<T>, PolygonPlants<T>, WedgingPlants<T>, TensionPlants<T>>::type,
+                                 typename Joined<LowPlants<T>, PolygonPlants<T>, TensionPlants<T>>::type>;
 }  // namespace all_plants_detail
 
 template <class T>

@@ -70,6 +70,13 @@ class Stepper {
   // force that held the ratio). Throws std::invalid_argument for bad parameters or options;
   // a start-up that fails leaves the stepper faulted.
   Stepper(const MbdParams& params, const StepperOptions& options = {});
+  struct Snapshot;
+  // Starts from `release`, a snapshot a stepper of the same parameters and
+  // options saved at its release (t = 0), without the start-up: the outputs
+  // are, bit for bit, those of that stepper after the save() (docs/mbd.md#stepping).
+  // start_stats() stays empty. Throws std::invalid_argument for a snapshot of
+  // another model size or of another time than the release.
+  Stepper(const MbdParams& params, const StepperOptions& options, const Snapshot& release);
   ~Stepper();
   Stepper(const Stepper&) = delete;
   Stepper& operator=(const Stepper&) = delete;
@@ -104,6 +111,8 @@ class Stepper {
   void restore(const Snapshot& s);
 
  private:
+  void build(const MbdParams& params);       // checks the options, makes the model at rest
+  void release_at(const MbdParams& params);  // the run from t = 0 with in_ held
   void evaluate();               // fills out_ from y_ at t
   void fail(StepFault f, const std::string& what);
 

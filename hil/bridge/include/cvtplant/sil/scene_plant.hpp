@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "cvtplant/can/messages.hpp"
 #include "cvtplant/math/detmath.hpp"
 #include "cvtplant/plant/rom_constants.hpp"
 #include "cvtplant/plant/rom_formulas.hpp"
@@ -57,6 +58,32 @@ inline PublishedParams published_params(const Scene& s) {
   return q;
 }
 
+// PlantShift's end-stop flags (docs/can.md#layout).
+struct EndStops {
+  bool underdrive = false, overdrive = false;
+};
+
+// PlantDiag.plant_fault for the real-time plant's watchdog reasons
+// (docs/rom.md#watchdog, docs/sil.md#plant-faults).
+constexpr can::PlantFault plant_fault_code(RomFault f) {
+  switch (f) {
+    case RomFault::none: return can::PlantFault::None;
+    case RomFault::input_non_finite:
+    case RomFault::input_saturated: return can::PlantFault::Input;
+    case RomFault::state_non_finite: return can::PlantFault::StateNonFinite;
+    case RomFault::state_saturated: return can::PlantFault::StateSaturated;
+    case RomFault::energy_growth: return can::PlantFault::EnergyCheck;
+    case RomFault::radius_out_of_range: return can::PlantFault::RadiusOutOfRange;
+    case RomFault::speed_out_of_range: return can::PlantFault::SpeedOutOfRange;
+    case RomFault::step_unresolved: return can::PlantFault::StepUnresolved;
+    case RomFault::scene_features: return can::PlantFault::SceneFeatures;
+    case RomFault::tension_out_of_range: return can::PlantFault::TensionOutOfRange;
+  }
+  return can::PlantFault::StateInvalid;
+}
+
+// The plant behind the bridge (docs/sil.md#plant-interface): what BasicBridge
+// asks of its plant. This one is the scene's real-time plant, heap-free.
 class ScenePlant {
  public:
   // False, with the previous scene kept, when the plants cannot run the
@@ -85,7 +112,29 @@ class ScenePlant {
   RomFault step(const RomInputs<double>& u) { return loaded() ? sim_.sim().step_frame(u) : RomFault::none; }
   RomOutputs<double> outputs() const { return loaded() ? sim_.sim().outputs() : RomOutputs<double>{}; }
   RomFault fault() const { return loaded() ? sim_.sim().fault() : RomFault::none; }
+  bool faulted() const { return fault() != RomFault::none; }
+  can::PlantFault fault_code() const { return plant_fault_code(fault()); }
+  // The watchdog's reason (docs/rom.md#watchdog): the JSON summary's
+  // plant_fault, and the whole of what is known about it.
+  const char* fault_detail() const { return rom_fault_name(fault()); }
+  const char* fault_message() const { return rom_fault_name(fault()); }
+  const char* load_refusal() const { return "this bridge has no plant for its features/frame"; }
+  const char* realtime_refusal() const { return ""; }
   long frames() const { return loaded() ? sim_.sim().frames() : 0; }
+  // A frame of the real-time plant costs microseconds (docs/rom.md#cost).
+  bool keeps_time() const { return true; }
+  PublishedParams published() const { return loaded() ? published_params(*scene_) : PublishedParams{}; }
+
+  // PlantForces.driven_axial_force_N: without wedging the ROM has one lumped
+  // clamping force (docs/rom.md#axial), which both signals carry; with it the
+  // driven actuator's own force.
+  double driven_axial_N() const { return variable_ratio() ? driven_clamp_N() : outputs().clamp_force_N; }
+  // The chain beyond the radial travel of the driver (docs/rom.md#wedging).
+  EndStops end_stops() const {
+    if (!variable_ratio()) return {};
+    const double rho = outputs().radius1_m - scene_->params.r1_m;
+    return {rho < -scene_->params.radial_travel_m, rho > scene_->params.radial_travel_m};
+  }
 
   // Wedging: the driven (secondary) clamping command, the force the driven
   // actuator applies, frames taken with the end stop's finer steps

@@ -3,6 +3,7 @@
 // diagnostics. Host only.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -19,7 +20,14 @@ struct Check {
   // false: reported, not judged (a real-time run whose plant did not keep
   // time, docs/sil.md#ratio-realtime); JUnit <skipped>, never a failure.
   bool judged = true;
+  // A criterion on the motion: the measured value and the bound it is held
+  // to (NaN for the functional criteria), what a comparison of two plants
+  // sets side by side (docs/sil.md#compare).
+  double value = NAN, limit = NAN;
 };
+
+// A criterion with its measured value and its bound.
+Check measured(std::string name, bool pass, std::string detail, double value, double limit);
 
 struct Sample {
   double t_s;
@@ -34,6 +42,7 @@ struct ScenarioResult {
   std::string what;  // the scenario in one line (JUnit property "description")
   double wall_s = 0;
   std::vector<Check> checks;
+  std::vector<Sample> trace;  // what the CSV holds
   bool pass() const {
     for (const Check& c : checks)
       if (c.judged && !c.pass) return false;
@@ -108,7 +117,16 @@ struct LockstepCounts {
   double harness_lost = 0;       // frames the harness's fault injector lost on purpose
   double controller_lost = 0;    // commands lost on purpose on the controller's link
   double max_recovery_ms = 0;    // slowest recovery of a lost request, wall time
+  // The plant stopped (PlantStatus Fault, docs/sil.md#plant-faults): the
+  // time of the group that first showed it and the reason, else -1 and "".
+  double plant_fault_s = -1;
+  std::string plant_fault;
 };
+
+// The reason of a plant fault for the criteria: its kind as PlantDiag
+// carries it and, when the harness can see it (a plant in this process),
+// the plant's own words.
+std::string plant_fault_reason(const cvt::can::PlantDiag& diag, const std::string& message);
 
 // Every criterion of a lock-step run after trace_written, in report order:
 // the bridge's answers and time, valid frames, the motion, the watchdog, the
@@ -124,5 +142,9 @@ inline constexpr double kMaxOverrunFraction = 0.01;
 
 // Marks the checks from `from` on as not judged: the plant did not keep time.
 void not_judged_from(std::vector<Check>& c, std::size_t from);
+
+// A run cut below its scenario's shortest judged run (--allow-partial):
+// what needs the rest of the scenario is reported, not judged.
+void partial_not_judged(const Scenario& sc, std::vector<Check>& c);
 
 }  // namespace cvt::sil::harness

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <string>
 
 #include "cvtplant/port/clock.hpp"
 #include "cvtplant/port/loopback_transport.hpp"
@@ -35,6 +36,10 @@ class PlantUnderTest {
   // empty for a plant in another process.
   virtual std::function<void()> idle() = 0;
   virtual RealTimeBus realtime() = 0;
+  // What the bus cannot carry about a plant fault (PlantDiag.plant_fault
+  // gives its kind): the plant's own words, where the harness can see them
+  // (a plant in this process); empty otherwise (docs/sil.md#plant-faults).
+  virtual std::string fault_message() const { return {}; }
 };
 
 // The in-process bus on a virtual clock (the loopback transport,
@@ -50,21 +55,53 @@ struct InProcessBus {
   cvt::port::CanTransport& external_node() { return bus.node(3); }
 };
 
-// The SIL bridge (the scene's real-time plant) in-process on the loopback
-// bus. In real time it is paced as pace_realtime does, one frame per virtual
-// millisecond; `frame_cost_ns` makes each frame's work take that long (a
-// plant slower than its frame overruns).
-class LoopbackBridgePlant final : public PlantUnderTest {
+// A bridge in-process on the loopback bus, with any plant behind it
+// (BasicBridge<Plant>). In real time it is paced as pace_realtime does, one
+// frame per virtual millisecond; `frame_cost_ns` makes each frame's work take
+// that long (a plant slower than its frame overruns).
+template <class BridgeT>
+class LoopbackPlant : public PlantUnderTest {
  public:
-  LoopbackBridgePlant(InProcessBus& bus, std::int64_t frame_cost_ns);
-  std::function<void()> idle() override;
-  RealTimeBus realtime() override;
+  // `initial`: the scene loaded now (null: none until the first SimCtrl
+  // Reset, for a plant whose start costs time); `plant_args` construct the
+  // bridge's plant.
+  template <class... PlantArgs>
+  LoopbackPlant(InProcessBus& bus, std::int64_t frame_cost_ns,
+                const cvt::Scene* initial = cvt::find_builtin_scene("tip-in"), PlantArgs&&... plant_args)
+      : bus_(bus),
+        bridge_(std::make_unique<BridgeT>(bus.plant_node(), bus.clock, nullptr,
+                                          static_cast<PlantArgs&&>(plant_args)...)),
+        frame_cost_ns_(frame_cost_ns) {
+    if (initial != nullptr) bridge_->load_scene(*initial);
+  }
+  std::function<void()> idle() override {
+    return [this] { bridge_->service(0); };
+  }
+  RealTimeBus realtime() override {
+    return RealTimeBus{bus_.clock, [this] { deadline_ = bus_.clock.now_ns() + bridge_->frame_ns(); },
+                       [this] {
+                         bus_.clock.sleep_until(deadline_);
+                         bridge_->realtime_frame();
+                         bus_.clock.advance(frame_cost_ns_);
+                         deadline_ += bridge_->frame_ns();
+                         if (bus_.clock.now_ns() > deadline_) bridge_->note_overrun();
+                       },
+                       0, "virtual clock"};
+  }
+  std::string fault_message() const override {
+    return bridge_->plant().faulted() ? bridge_->plant().fault_message() : "";
+  }
+  const BridgeT& bridge() const { return *bridge_; }
+  BridgeT& bridge() { return *bridge_; }
 
  private:
   InProcessBus& bus_;
-  std::unique_ptr<Bridge> bridge_;
+  std::unique_ptr<BridgeT> bridge_;
   std::int64_t frame_cost_ns_, deadline_ = 0;
 };
+
+// The SIL bridge (the scene's real-time plant) in-process on the loopback bus.
+using LoopbackBridgePlant = LoopbackPlant<Bridge>;
 
 // A plant process on a CAN interface (cvtplant-bridge): nothing to service,
 // it paces itself on the wall clock, which the harness reads too.

@@ -4,6 +4,7 @@
 // controller and any plant behind the harness's seams. Host only.
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include "cvtctl/controller_node.hpp"
@@ -18,6 +19,12 @@ namespace cvt::sil::harness {
 
 struct RunConfig {
   std::string out_dir = ".";  // the CSV traces
+  // The plant under test, for what the bus cannot carry about a fault (its
+  // message, PlantUnderTest::fault_message); may be null.
+  const PlantUnderTest* plant = nullptr;
+  // Called after every lock-step period with its simulated time (progress of
+  // a slow plant); may be empty.
+  std::function<void(double t_s)> on_period;
 };
 
 // `harness_faults` is the harness's own transport wrapper, which the fault

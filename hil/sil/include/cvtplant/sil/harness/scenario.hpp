@@ -70,6 +70,24 @@ float clamp_supply(const Scenario& sc, double t);
 
 // Every scenario, in the order `--scenario all` runs them.
 std::vector<Scenario> scenarios();
+
+// The scenarios of `list` (names separated by commas, or all) in the table's
+// order, each cut at t_end_s when t_end_s > 0. A scenario `accept` refuses
+// is left out of all (named in *left_out) and an error when named. Returns
+// "" or the usage error: an unknown name, the refusal after `refusal_prefix`,
+// or a cut below a scenario's shortest judged run (Scenario::min_t_end_s)
+// unless `partial` (its first seconds only, docs/sil.md#cli: the criteria
+// that need more are not judged, partial_criterion).
+std::string select_scenarios(const std::string& list, double t_end_s, std::vector<Scenario>& out,
+                             const std::function<bool(const Scenario&, std::string& why)>& accept = {},
+                             std::vector<std::string>* left_out = nullptr, const std::string& refusal_prefix = "",
+                             bool partial = false);
+
+// A run cut below its scenario's shortest judged run (--allow-partial)
+// judges only what any length judges: its answers and time, the frames, the
+// slip and safety factor after the start-up, the watchdog and the command
+// timeout. True for those criteria's names.
+bool partial_criterion(const std::string& name);
 // "ratio-sweep, kick-down, ... or all", for usage messages.
 std::string scenario_names();
 
