@@ -10,7 +10,7 @@
 //  - an accepted entry has at least two rows, at most the run's samples and
 //    all of them when it records no failure, every column as long as the
 //    times, the times on the run's grid, every value finite and within
-//    1e12 but the two slip columns, which may be nan.
+//    1e12 but the two slip columns and the geometric ratio, which may be nan.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -22,7 +22,7 @@ namespace {
 
 [[noreturn]] void violated() { __builtin_trap(); }
 
-const std::string kKey = "cvtplant multibody reference (fuzz), cache format 5\nrun.t_end_s 0.005\n";
+const std::string kKey = "cvtplant multibody reference (fuzz), cache format 6\nrun.t_end_s 0.005\n";
 
 }  // namespace
 
@@ -62,11 +62,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* in, size_t n) {
   if (out.sheave1_m.size() != rows || out.sheave2_m.size() != rows) violated();
   for (std::size_t i = 0; i < rows; ++i) {
     if (std::fabs(s.t_s[i] - 1e-3 * static_cast<double>(i)) > 1e-12) violated();
-    const double finite[] = {s.t_s[i], s.omega1_rad_s[i], s.omega2_rad_s[i], s.F_ax1_N[i], s.torque_driver_Nm[i],
+    const double finite[] = {s.t_s[i],      s.omega1_rad_s[i], s.omega2_rad_s[i], s.F_ax1_N[i], s.torque_driver_Nm[i],
+                             s.F_ax2_N[i],  s.clamp1_N[i],     s.clamp2_N[i],     s.tau_in_Nm[i], s.tau_load_Nm[i],
                              out.sheave1_m[i], out.sheave2_m[i]};
     for (const double v : finite)
       if (!(std::fabs(v) <= 1e12)) violated();
-    for (const double v : {s.slip1_m_s[i], s.wrap_slip_m_s[i]})
+    for (const double v : {s.slip1_m_s[i], s.wrap_slip_m_s[i], s.ratio_geom[i]})
       if (!std::isnan(v) && !(std::fabs(v) <= 1e12)) violated();
   }
   return 0;

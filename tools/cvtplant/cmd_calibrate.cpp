@@ -74,6 +74,7 @@ std::string command_line(const Options& o) {
   std::ostringstream s;
   s << "cvtplant calibrate --scene " << shell_word(o.scenes) << " --fit " << shell_word(o.fit);
   if (!o.start.empty()) s << " --start " << shell_word(o.start);
+  if (!o.ref.set.empty()) s << " --set " << o.ref.set;
   if (o.ref.sheaves != "scene") s << " --sheaves " << o.ref.sheaves;
   if (o.ref.t_end_s > 0) s << " --t-end " << exact_number(o.ref.t_end_s);
   s << " --rtol " << exact_number(o.ref.rtol) << " --every " << o.every << " --max-evals " << o.max_evals;
@@ -164,7 +165,7 @@ Action register_calibrate(CLI::App& app) {
   return [opt, sub]() -> int {
     return guarded([&] {
       const Options& o = *opt;
-      const val::RunSettings settings = reference_settings(sub, o.ref);
+      const val::RunSettings common = reference_settings(sub, o.ref);
       if (!val::is_cpp_identifier(o.function))
         throw UsageError{"--function: " + quoted(o.function) +
                          " is not a name for a C++ function (an identifier of at most 64 characters, not a keyword "
@@ -184,15 +185,17 @@ Action register_calibrate(CLI::App& app) {
       if (sub->count("--out") > 0) files.output("--out", o.out);
       if (sub->count("--header") > 0) files.output("--header", o.header);
       std::vector<cvt::Scene> plant_scenes;
+      std::vector<val::RunSettings> settings;
       for (std::size_t i = 0; i < loaded.size(); ++i) {
         const auto& l = loaded[i];
+        settings.push_back(settings_for(common, o.ref, *l));
         std::string why;
-        if (!val::reference_setup(l->scene, settings, why))
+        if (!val::reference_setup(l->scene, settings.back(), why))
           throw UsageError{"--scene " + names[i] + ": the reference cannot run " + why};
         // --start moves the plant's parameters only; the reference runs the scene.
         plant_scenes.push_back(l->scene);
         if (!o.start.empty()) apply_params_file(o.start, plant_scenes.back());
-        reference_step_cap(l->scene, settings, o.ref, l->name);
+        reference_step_cap(l->scene, settings.back(), o.ref, l->name);
       }
       // The fitted values are shared by every scene: they start from the first's.
       std::unique_ptr<val::Calibration> cal;
@@ -210,13 +213,13 @@ Action register_calibrate(CLI::App& app) {
       double ref_cpu = 0;
       for (std::size_t i = 0; i < loaded.size(); ++i) {
         cvt::Scene plant = plant_scenes[i];
-        plant.t_end_s = val::run_length_s(plant, settings);
+        plant.t_end_s = val::run_length_s(plant, common);
         std::string why;
-        auto setup = *val::reference_setup(loaded[i]->scene, settings, why);
+        auto setup = *val::reference_setup(loaded[i]->scene, settings[i], why);
         setup.run.t_end_s = plant.t_end_s;
-        setup.run.max_steps = reference_step_cap(loaded[i]->scene, settings, o.ref, loaded[i]->name);
+        setup.run.max_steps = reference_step_cap(loaded[i]->scene, settings[i], o.ref, loaded[i]->name);
         Progress progress("calibrate " + loaded[i]->name + ": reference", setup.run.t_end_s);
-        const val::ReferenceRun rr = val::reference_run(setup.params, setup.run, settings.cache_dir,
+        const val::ReferenceRun rr = val::reference_run(setup.params, setup.run, common.cache_dir,
                                                         [&](double t) { progress.update(t); });
         progress.finish();
         report_cache_problem("calibrate", rr);

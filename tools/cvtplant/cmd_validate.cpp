@@ -17,12 +17,14 @@
 #include "registry.hpp"
 #include "scene_file.hpp"
 #include "options.hpp"
+#include "validate_suite.hpp"
 #include "validation_options.hpp"
 #include "cvtplant/files/paths.hpp"
 #include "cvtplant/files/replace.hpp"
 #include "cvtplant/scene/builtin_scenes.hpp"
 #include "cvtplant/validation/report.hpp"
 #include "cvtplant/validation/scene_check.hpp"
+#include "cvtplant/validation/suite.hpp"
 
 namespace cvtcli {
 
@@ -38,11 +40,15 @@ struct Options {
   double max_t_end_s = 60;
   bool json = false;
   bool figures = true;
+  // --suite (docs/validation.md#suite): the scene is the plant's, default ratio-control.
+  std::string suite, uncertainty = "subset";
+  bool maps = true;
 };
 
 struct SceneOutput {
   val::SceneResult r;
   std::string png, csv;
+  const char* set = "seed";  // the reference's parameter set
 };
 
 bool holds_a_pulley(const cvt::Scene& s) { return s.params.hold_driver_speed || s.params.hold_driven_speed; }
@@ -87,6 +93,7 @@ nlohmann::json to_json(const SceneOutput& o) {
     return j;
   }
   j["status"] = "ok";
+  j["set"] = o.set;
   j["sheaves"] = r.clamped ? "clamped" : "fixed";
   j["t_end_s"] = r.t_end_s;
   j["compared_s"] = r.cmp.compared_s;
@@ -122,9 +129,8 @@ nlohmann::json to_json(const SceneOutput& o) {
 }
 
 // Values that were not computed read "n/a" (docs/cli.md#nulls).
-std::string pct(double v) { return text_number(100.0 * v, "%.1f %%"); }
-
-std::string fmt(double v) { return text_number(v, "%.4g"); }
+std::string pct(double v) { return pct_text(v); }
+std::string fmt(double v) { return num_text(v); }
 
 std::string tfmt(double t) { return t >= 0 ? fmt(t) + " s" : "never"; }
 
@@ -135,9 +141,10 @@ void print_text(const std::vector<SceneOutput>& results) {
       std::printf("## %s: not run (the reference cannot run %s)\n\n", r.name.c_str(), r.skipped.c_str());
       continue;
     }
-    std::printf("## %s (%g s; compared over 0-%g s; steady state: the last %g s of it; reference on %s sheaves, %s)\n\n",
-                r.name.c_str(), r.t_end_s, r.cmp.compared_s, r.cmp.window_s, r.clamped ? "clamped" : "fixed",
-                r.ref.from_cache ? "from the cache" : "run now");
+    std::printf(
+        "## %s (%g s; compared over 0-%g s; steady state: the last %g s of it; reference: %s set on %s sheaves, %s)\n\n",
+        r.name.c_str(), r.t_end_s, r.cmp.compared_s, r.cmp.window_s, o.set, r.clamped ? "clamped" : "fixed",
+        r.ref.from_cache ? "from the cache" : "run now");
     if (!r.ref.cache_problem.empty())
       std::printf("A cache entry of this run failed its checks and the reference was run again: %s.\n\n",
                   r.ref.cache_problem.c_str());
@@ -173,13 +180,43 @@ Action register_validate(CLI::App& app) {
                   "Run the plant with a parameter file's [params] (e.g. calibrate --out); the reference is unchanged");
   sub->add_flag("--json", opt->json, "Print the results as JSON");
   sub->add_flag("!--no-figures", opt->figures, "Skip the overlay PNGs");
+  sub->add_option("--suite", opt->suite,
+                  "Run a manoeuvre suite against the reference instead of scenes (docs/validation.md#suite): "
+                  "controller or ci; --scene then names the plant (default ratio-control), --set the reference's "
+                  "set (default production), --max-t-end caps the suite's simulated seconds of reference")
+      ->check(CLI::IsMember(val::suite_names()));
+  sub->add_option("--uncertainty", opt->uncertainty,
+                  "With --suite: the reference's uncertainty runs: none, subset (one run of each kind and one "
+                  "cell of each map) or all")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"none", "subset", "all"}));
+  sub->add_flag("!--no-maps", opt->maps, "With --suite: skip the maps (thrust ratio, shift rate, traction, onset)");
   return [opt, sub, dir_opt]() -> int {
     return guarded([&] {
       const Options& o = *opt;
+      if (!o.suite.empty()) {
+        if (sub->count("--t-end") > 0) throw UsageError{"--t-end: a suite's manoeuvres have their own lengths"};
+        if (dir_opt->count() > 0) throw UsageError{"--scene-dir: not with --suite (--scene names the plant)"};
+        if (sub->count("--sheaves") > 0) throw UsageError{"--sheaves: a suite runs clamped sheaves"};
+        SuiteCliOptions so;
+        so.ref = o.ref;
+        so.suite = o.suite;
+        if (sub->count("--scene") > 0) so.plant = o.scene;
+        so.params = o.params;
+        so.uncertainty = o.uncertainty;
+        so.max_sim_s = sub->count("--max-t-end") > 0 ? o.max_t_end_s : so.max_sim_s;
+        so.maps = o.maps;
+        so.figures = o.figures;
+        so.json = o.json;
+        return run_validate_suite(so);
+      }
+      if (sub->count("--uncertainty") > 0 || sub->count("--no-maps") > 0)
+        throw UsageError{"--uncertainty and --no-maps go with --suite"};
       std::error_code ec;
       if (dir_opt->count() > 0 && !std::filesystem::is_directory(o.scene_dir, ec))
         throw UsageError{"--scene-dir: " + quoted(o.scene_dir, 200) + " is not a directory"};
-      const val::RunSettings settings = reference_settings(sub, o.ref);
+      if (!(o.max_t_end_s > 0 && std::isfinite(o.max_t_end_s))) throw UsageError{"--max-t-end: must be > 0"};
+      const val::RunSettings common = reference_settings(sub, o.ref);
       const auto scenes = scenes_for(o.scene, o.scene_dir);
       // Every file read and written, before any work: no output over an
       // input, no two scenes' results in one file (docs/cli.md#files).
@@ -199,16 +236,16 @@ Action register_validate(CLI::App& app) {
       // Every scene's length, its reference's work and the parameter file
       // are checked before any work.
       std::vector<cvt::Scene> plant_scenes;
-      std::vector<val::RunSettings> scene_settings;
+      std::vector<val::RunSettings> settings;
       for (const auto& l : scenes) {
+        settings.push_back(settings_for(common, o.ref, *l));
         plant_scenes.push_back(l->scene);
         if (has_params) apply_params_file(o.params, plant_scenes.back());
-        const double t_end = val::run_length_s(l->scene, settings);
+        const double t_end = val::run_length_s(l->scene, common);
         if (t_end > o.max_t_end_s)
           throw UsageError{"scene " + l->name + ": " + fmt(t_end) + " s exceeds --max-t-end " + fmt(o.max_t_end_s) +
                            " s (raise it or shorten with --t-end)"};
-        scene_settings.push_back(settings);
-        scene_settings.back().max_steps = reference_step_cap(l->scene, settings, o.ref, l->name);
+        settings.back().max_steps = reference_step_cap(l->scene, settings.back(), o.ref, l->name);
       }
       prepare_out_dir(o.ref);
       std::vector<SceneOutput> results;
@@ -232,9 +269,10 @@ Action register_validate(CLI::App& app) {
       for (std::size_t i = 0; i < scenes.size(); ++i) {
         const auto& l = scenes[i];
         SceneOutput out;
+        out.set = cvt::mbd::parameter_set_name(settings[i].set);
         try {
-          Progress progress("validate " + l->name + ": reference", val::run_length_s(l->scene, settings));
-          out.r = val::check_scene(l->name, l->scene, plant_scenes[i], scene_settings[i],
+          Progress progress("validate " + l->name + ": reference", val::run_length_s(l->scene, common));
+          out.r = val::check_scene(l->name, l->scene, plant_scenes[i], settings[i],
                                    [&](double t) { progress.update(t); });
         } catch (const Interrupted& e) {
           // The scenes done so far are reported; this one's reference run

@@ -27,6 +27,11 @@ void add_reference_options(CLI::App* sub, ReferenceOptions& o, const std::string
                             "docs/cli.md#caps)");
   add_real(sub, "--t-end", o.t_end_s, {0, 3600, true},
            "Shorten every run to this simulated time [s] (default: each scene's)");
+  sub->add_option("--set", o.set,
+                  "The reference's parameter set for every scene: seed (Table 1) or production (the production-like "
+                  "chain CVT, docs/mbd-production.md); default: each scene's own (a scene file's reference_set, "
+                  "else seed)")
+      ->check(CLI::IsMember({"seed", "production"}));
 }
 
 cvt::validation::RunSettings reference_settings(const CLI::App* sub, const ReferenceOptions& o) {
@@ -41,18 +46,35 @@ cvt::validation::RunSettings reference_settings(const CLI::App* sub, const Refer
 long long reference_step_cap(const cvt::Scene& s, const cvt::validation::RunSettings& st, const ReferenceOptions& o,
                              const std::string& scene_name) {
   const bool given = o.max_steps_opt != nullptr && o.max_steps_opt->count() > 0;
-  return step_cap(bdf_work(cvt::validation::run_length_s(s, st), st.rtol), given, static_cast<double>(o.max_steps),
+  const double rate =
+      st.set == cvt::mbd::ParameterSet::production ? kProductionBdfStepsPerSecond : kSeedBdfStepsPerSecond;
+  return step_cap(bdf_work(cvt::validation::run_length_s(s, st), st.rtol, rate), given, static_cast<double>(o.max_steps),
                   "scene " + scene_name + "'s reference run");
 }
+
+cvt::validation::RunSettings settings_for(const cvt::validation::RunSettings& st, const ReferenceOptions& o,
+                                          const LoadedScene& scene) {
+  cvt::validation::RunSettings out = st;
+  out.set = cvt::validation::parameter_set(!o.set.empty() ? o.set : scene.reference_set);
+  return out;
+}
+
+std::string pct_text(double v) { return text_number(100.0 * v, "%.1f %%"); }
+
+std::string num_text(double v) { return text_number(v, "%.4g"); }
 
 void prepare_out_dir(const ReferenceOptions& o) {
   cvt::files::make_directories(o.out_dir + "/reference-cache", "--out-dir");
 }
 
-void report_cache_problem(const std::string& command, const cvt::validation::ReferenceRun& r) {
-  if (r.cache_problem.empty()) return;
+void report_cache_problem(const std::string& command, const std::string& problem) {
+  if (problem.empty()) return;
   std::fprintf(stderr, "cvtplant %s: note: a cache entry failed its checks and was run again: %s\n", command.c_str(),
-               cvt::files::shown_path(r.cache_problem).c_str());
+               cvt::files::shown_path(problem).c_str());
+}
+
+void report_cache_problem(const std::string& command, const cvt::validation::ReferenceRun& r) {
+  report_cache_problem(command, r.cache_problem);
 }
 
 }  // namespace cvtcli

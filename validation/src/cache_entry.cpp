@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <iterator>
 
 #include "cvtplant/validation/cache.hpp"
 
@@ -15,11 +16,15 @@ namespace cvt::validation {
 namespace {
 
 constexpr const char* kCsvHeader =
-    "t_s,omega1_rad_s,omega2_rad_s,F_ax1_N,torque_driver_Nm,slip1_m_s,wrap_slip1_m_s,sheave1_m,sheave2_m\n";
-constexpr int kCsvColumns = 9;  // the series' columns, then the two sheave openings
-// Column 5 and 6 (the driver's slip and the whole wrap's) are nan when no
-// bolt is in the wrap; every other value is finite.
-constexpr bool may_be_nan(int col) { return col == 5 || col == 6; }
+    "t_s,omega1_rad_s,omega2_rad_s,F_ax1_N,torque_driver_Nm,slip1_m_s,wrap_slip1_m_s,ratio_geom,F_ax2_N,clamp1_N,"
+    "clamp2_N,tau_in_Nm,tau_load_Nm,sheave1_m,sheave2_m\n";
+// The series' columns (kSeriesColumns), then the two sheave openings.
+constexpr int kCsvColumns = static_cast<int>(std::size(kSeriesColumns)) + 2;
+static_assert(kCsvColumns == 15, "a new series column goes into kCsvHeader and may_be_nan, and raises the format");
+// Columns 5, 6 and 7 (the driver's slip, the whole wrap's and the geometric
+// ratio r2/r1) are nan when no bolt is in a wrap; every other value is
+// finite.
+constexpr bool may_be_nan(int col) { return col == 5 || col == 6 || col == 7; }
 // No quantity of the reference comes near it (speeds below 1e4 rad/s,
 // forces below 1e9 N): a larger cell is damage, not data.
 constexpr double kCellLimit = 1e12;
@@ -144,7 +149,7 @@ void format_cache_entry(const ReferenceRun& run, const std::string& key, std::st
 }
 
 std::string parse_cache_entry(const std::string& key_file, const std::string& csv_file, const std::string& key,
-                              const cvt::mbd::RunOptions& r, const std::string& name, ReferenceRun& out) {
+                              const std::string& name, ReferenceRun& out) {
   const std::string key_name = name + ".key", csv_name = name + ".csv";
   out = ReferenceRun{};
   if (key_file.size() < key.size() || key_file.compare(0, key.size(), key) != 0)
@@ -164,7 +169,6 @@ std::string parse_cache_entry(const std::string& key_file, const std::string& cs
   if (key_hash(csv_file) != sum)
     return csv_name + ": its bytes do not match the checksum in " + key_name + " (changed or cut short)";
   if (csv_file.compare(0, std::strlen(kCsvHeader), kCsvHeader) != 0) return csv_name + ": not the cache's header";
-  const SampleGrid grid = grid_of(r);
   std::vector<double>* cols[kCsvColumns];
   int c = 0;
   for (const auto col : kSeriesColumns) cols[c++] = &(out.series.*col);
@@ -176,7 +180,7 @@ std::string parse_cache_entry(const std::string& key_file, const std::string& cs
     const std::size_t end = csv_file.find('\n', at);
     const std::string where = csv_name + ": row " + std::to_string(row + 1);
     if (end == std::string::npos) return where + ": cut short (no end of line)";
-    if (row >= grid.count) return where + ": more rows than the run's " + std::to_string(grid.count) + " samples";
+    if (row >= rows_stored) return where + ": more rows than the " + std::to_string(rows_stored) + " in " + key_name;
     const std::string line = csv_file.substr(at, end - at);
     at = end + 1;
     std::size_t from = 0;
@@ -192,18 +196,42 @@ std::string parse_cache_entry(const std::string& key_file, const std::string& cs
         return where + ": " + shown(cell) + " is out of range";
       cols[k]->push_back(v);
     }
-    const double t = out.series.t_s.back(), t_expected = grid.at(row);
-    if (!(std::fabs(t - t_expected) <= 1e-9 * grid.sample_s))
-      return where + ": t = " + shortest(t) + " s, where the run samples at " + shortest(t_expected) + " s";
+    const std::vector<double>& t = out.series.t_s;
+    if (row > 0 && !(t[t.size() - 1] > t[t.size() - 2]))
+      return where + ": t = " + shortest(t.back()) + " s, not after the row before's " + shortest(t[t.size() - 2]) +
+             " s";
     ++row;
   }
   if (row != rows_stored)
     return csv_name + ": " + std::to_string(row) + " rows, " + key_name + " says " + std::to_string(rows_stored);
-  if (row < 2) return csv_name + ": fewer than two rows";
-  if (!failed && row != grid.count)
-    return csv_name + ": " + std::to_string(row) + " rows where the run's span has " + std::to_string(grid.count) +
-           " samples and no failure is recorded";
+  if (row < 1) return csv_name + ": no rows";
   out.failure = failed ? failure : std::string();
+  return {};
+}
+
+std::string parse_cache_entry(const std::string& key_file, const std::string& csv_file, const std::string& key,
+                              const cvt::mbd::RunOptions& r, const std::string& name, ReferenceRun& out) {
+  const std::string problem = parse_cache_entry(key_file, csv_file, key, name, out);
+  if (!problem.empty()) return problem;
+  const std::string csv_name = name + ".csv";
+  const SampleGrid grid = grid_of(r);
+  const long long rows = static_cast<long long>(out.series.size());
+  const auto bad = [&](const std::string& why) {
+    out = ReferenceRun{};
+    return csv_name + ": " + why;
+  };
+  if (rows > grid.count)
+    return bad(std::to_string(rows) + " rows, more than the run's " + std::to_string(grid.count) + " samples");
+  for (long long k = 0; k < rows; ++k) {
+    const double t = out.series.t_s[static_cast<std::size_t>(k)], t_expected = grid.at(k);
+    if (!(std::fabs(t - t_expected) <= 1e-9 * grid.sample_s))
+      return bad("row " + std::to_string(k + 1) + ": t = " + shortest(t) + " s, where the run samples at " +
+                 shortest(t_expected) + " s");
+  }
+  if (rows < 2) return bad("fewer than two rows");
+  if (out.failure.empty() && rows != grid.count)
+    return bad(std::to_string(rows) + " rows where the run's span has " + std::to_string(grid.count) +
+               " samples and no failure is recorded");
   return {};
 }
 

@@ -83,7 +83,7 @@ TEST_SUITE("cache") {
     const cvt::mbd::MbdParams p = cvt::mbd::seed_case(2);
     const cvt::mbd::RunOptions base;
     const std::string key = reference_key(p, base);
-    for (int i = 0; i < 8; ++i) {
+    for (int i = 0; i < 9; ++i) {
       cvt::mbd::RunOptions r = base;
       Perturb change(i);
       cvt::mbd::visit_run_options(r, change);
@@ -200,9 +200,9 @@ TEST_SUITE("cache") {
     std::string bad = with_row3(first_cell + ",abc" + row3_text.substr(row3_text.find(',', second)));
     CHECK(problem(bad, resummed(bad)).find("E.csv: row 3: 'abc' is not a number") == 0);
     bad = with_row3(row3_text + ",1");
-    CHECK(problem(bad, resummed(bad)).find("E.csv: row 3: not 9 cells") == 0);
+    CHECK(problem(bad, resummed(bad)).find("E.csv: row 3: not 15 cells") == 0);
     bad = with_row3(row3_text.substr(0, row3_text.rfind(',')));
-    CHECK(problem(bad, resummed(bad)).find("E.csv: row 3: not 9 cells") == 0);
+    CHECK(problem(bad, resummed(bad)).find("E.csv: row 3: not 15 cells") == 0);
     bad = with_row3(first_cell + ",nan" + row3_text.substr(row3_text.find(',', second)));
     CHECK(problem(bad, resummed(bad)).find("E.csv: row 3: 'nan' is out of range") == 0);
     bad = with_row3(first_cell + ",1e308" + row3_text.substr(row3_text.find(',', second)));
@@ -245,6 +245,95 @@ TEST_SUITE("cache") {
       CHECK(e.path().filename().string()[0] != '.');
     }
     CHECK(files == 2);
+    std::filesystem::remove_all(dir);
+  }
+
+  TEST_CASE("an entry has fifteen columns; the slips and the geometric ratio may be nan, nothing else") {
+    const std::string dir = scratch_dir("cache_columns");
+    cvt::mbd::MbdParams p = cvt::mbd::seed_case(1);
+    p.settle_s = 0.02;
+    cvt::mbd::RunOptions r;
+    r.t_end_s = 0.005;
+    r.sample_s = 1e-3;
+    const ReferenceRun made = reference_run(p, r, dir);
+    const std::string key = reference_key(p, r);
+    std::string key_file, csv_file;
+    format_cache_entry(made, key, key_file, csv_file);
+    const std::string header = csv_file.substr(0, csv_file.find('\n'));
+    CHECK(header ==
+          "t_s,omega1_rad_s,omega2_rad_s,F_ax1_N,torque_driver_Nm,slip1_m_s,wrap_slip1_m_s,ratio_geom,F_ax2_N,"
+          "clamp1_N,clamp2_N,tau_in_Nm,tau_load_Nm,sheave1_m,sheave2_m");
+    // The second data row with cell `col` replaced by `text`, the checksum fixed.
+    const auto with_cell = [&](int col, const std::string& text) {
+      std::size_t at = csv_file.find('\n', csv_file.find('\n') + 1) + 1;
+      for (int i = 0; i < col; ++i) at = csv_file.find(',', at) + 1;
+      std::size_t end = csv_file.find_first_of(",\n", at);
+      std::string csv = csv_file.substr(0, at) + text + csv_file.substr(end);
+      std::string k = key_file;
+      k.replace(k.find("entry csv_fnv1a64 ") + 18, 16, key_hash(csv));
+      ReferenceRun out;
+      return parse_cache_entry(k, csv, key, r, "E", out);
+    };
+    for (int col = 0; col < 15; ++col) {
+      INFO("column " << col);
+      const bool may_be_nan = col == 5 || col == 6 || col == 7;
+      if (may_be_nan)
+        CHECK(with_cell(col, "nan") == "");
+      else
+        CHECK(with_cell(col, "nan").find("E.csv: row 2: 'nan' is out of range") == 0);
+      CHECK(with_cell(col, "2e12").find("E.csv: row 2: '2e12' is out of range") == 0);
+    }
+    std::filesystem::remove_all(dir);
+  }
+
+  TEST_CASE("cached_run and store_run: a run under any key, its failure kept, a damaged entry named") {
+    const std::string dir = scratch_dir("cache_store");
+    cvt::mbd::MbdParams p = cvt::mbd::seed_case(1);
+    p.settle_s = 0.02;
+    cvt::mbd::RunOptions r;
+    r.t_end_s = 0.005;
+    r.sample_s = 1e-3;
+    const std::string ref_dir = scratch_dir("cache_store_ref");
+    const ReferenceRun run = reference_run(p, r, ref_dir);
+    std::filesystem::remove_all(ref_dir);
+    // A manoeuvre's run: its own key, rows cut short by a stop that is no
+    // failure, then one with a failure.
+    const std::string key = "a manoeuvre's key\nmanoeuvre.t_end_s 0.005\n";
+    std::string problem = "x";
+    CHECK_FALSE(cached_run(key, dir, &problem).has_value());
+    CHECK(problem.empty());  // no entry: a miss, no problem
+    ReferenceRun cut = run;
+    for (const auto c : kSeriesColumns) (cut.series.*c).resize(3);
+    cut.sheave1_m.resize(3);
+    cut.sheave2_m.resize(3);
+    cut.failure = "the reference stopped at t = 0.002 s (ledger)";
+    REQUIRE(store_run(key, dir, cut));
+    const auto hit = cached_run(key, dir, &problem);
+    REQUIRE(hit.has_value());
+    CHECK(problem.empty());
+    CHECK(hit->from_cache);
+    CHECK(std::isnan(hit->cpu_s));
+    CHECK(hit->failure == cut.failure);
+    CHECK(hit->steps == cut.steps);
+    CHECK(hit->series.t_s == cut.series.t_s);
+    CHECK(hit->series.clamp1_N == cut.series.clamp1_N);
+    CHECK(hit->series.tau_load_Nm == cut.series.tau_load_Nm);
+    CHECK(hit->sheave2_m == cut.sheave2_m);
+    // Stored again without the failure: the failure is gone with it.
+    cut.failure.clear();
+    REQUIRE(store_run(key, dir, cut));
+    CHECK(cached_run(key, dir)->failure.empty());
+    // Damaged: no hit, and the problem names the file.
+    const std::string base = dir + "/" + key_hash(key);
+    std::filesystem::resize_file(base + ".csv", 300);
+    CHECK_FALSE(cached_run(key, dir, &problem).has_value());
+    CHECK(problem.find(base + ".csv: its bytes do not match") == 0);
+    // A run the checks would refuse (a driver speed beyond any the reference
+    // reaches) is used by the caller but not stored.
+    ReferenceRun wild = run;
+    wild.series.omega1_rad_s[1] = std::nan("");
+    CHECK_FALSE(store_run("wild\n", dir, wild));
+    CHECK_FALSE(std::filesystem::exists(dir + "/" + key_hash("wild\n") + ".key"));
     std::filesystem::remove_all(dir);
   }
 

@@ -4,6 +4,7 @@
 // parameters and run options (cvt::mbd::visit_mbd_params,
 // visit_run_options) and the reference's version, so two runs with equal
 // keys are the same run.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -56,20 +57,40 @@ ReferenceRun reference_run(const cvt::mbd::MbdParams& p, const cvt::mbd::RunOpti
 // The checks of a cache entry (docs/validation.md#cache): `key_file` must be
 // `key` followed by the entry's lines (its row count, the FNV-1a 64 of the
 // CSV's bytes, the run's steps and ledger residual, its failure if any);
-// `csv_file` must have that checksum, the cache's header, and rows of nine
-// numbers each (finite, |v| <= 1e12; the two slip columns may be nan: no
-// bolt in the wrap) at the run's sample times: t = 0, sample_s, ... up to
-// t_end_s, every one of them unless the entry records a failure. Returns
-// "" and fills `out` when the entry passes, else the first problem found
-// (naming "<name>.key" or "<name>.csv" and the row). Never throws on any
-// bytes.
+// `csv_file` must have that checksum, the cache's header, and the recorded
+// number of rows (at least one) of fifteen numbers each (the columns of
+// kSeriesColumns, then the two sheave openings; finite, |v| <= 1e12; the
+// two slip columns and the geometric ratio may be nan: no bolt in a wrap),
+// their times increasing. Returns "" and fills `out` when the entry passes,
+// else the first problem found (naming "<name>.key" or "<name>.csv" and the
+// row). Never throws on any bytes.
+std::string parse_cache_entry(const std::string& key_file, const std::string& csv_file, const std::string& key,
+                              const std::string& name, ReferenceRun& out);
+// The same, and the rows on the sample times of a run made with options r:
+// t = 0, sample_s, ... up to t_end_s, every one of them unless the entry
+// records a failure (then at least two).
 std::string parse_cache_entry(const std::string& key_file, const std::string& csv_file, const std::string& key,
                               const cvt::mbd::RunOptions& r, const std::string& name, ReferenceRun& out);
 
-// The files of an entry for `run` (made with options r): the key file's
-// text and the CSV's, as reference_run stores them.
+// The files of an entry for `run`: the key file's text and the CSV's, as
+// store_run writes them.
 void format_cache_entry(const ReferenceRun& run, const std::string& key, std::string& key_file,
                         std::string& csv_file);
+
+// The run stored under `key` in cache_dir, if its entry is there and passes
+// its checks (parse_cache_entry; its cpu_s and wall_s NaN: nothing was spent
+// now). An entry that is there but fails a check is no hit, and `problem`
+// (if given) names the check; else it is left empty.
+std::optional<ReferenceRun> cached_run(const std::string& key, const std::string& cache_dir,
+                                       std::string* problem = nullptr);
+// Stores a run under `key`, its failure (if any) with it: both files whole
+// by a temporary and a rename, the key last, so a run cut short is never a
+// hit. A run the checks would refuse is not stored (false). Throws
+// InputError if the cache directory cannot be used, RunError if a write
+// fails.
+bool store_run(const std::string& key, const std::string& cache_dir, const ReferenceRun& run);
+// Appends one of the reference's samples to a run's series and sheave columns.
+void append_sample(ReferenceRun& run, const cvt::mbd::Sample& s);
 
 // The first sample time at which the reference's movable sheave (0 driver,
 // 1 driven) is within 0.1 mm of its end stop (the chain at a ratio limit: the

@@ -19,7 +19,8 @@ inline constexpr double kGrossSlip_m_s = 1.0;
 // wrap slip with no bolt in the wrap),
 //   sqrt(sum (plant - reference)^2 / sum reference^2),
 // or the absolute RMS of the difference where the reference is 0 throughout;
-// NaN (not computed) when no sample has both finite.
+// NaN (not computed) when no sample has both finite (a quantity one model
+// does not have).
 double rel_rms(const std::vector<double>& plant, const std::vector<double>& reference);
 
 // The reference's side of rel_rms, for a fit whose reference is fixed while
