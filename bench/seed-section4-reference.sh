@@ -75,7 +75,7 @@ for name in runs:
             nl = next((x for x in sur if x["name"] == "prediction_error"), None)
             tr = next((x for x in sur if x["name"] == "time_reversal_asymmetry"), None)
             wo = g.get("wolf", {}).get(f"m{se['m']}", {})
-            wolf = "%.3g +- %.2g" % (wo["lambda"], wo["ci95"]) if "lambda" in wo else wo.get("error", "-")
+            wolf = "%.3g +- %.2g" % (wo["lambda"], wo["ci95"]) if "lambda" in wo else ("no estimate" if "error" in wo else "-")
             e = s.get("equation_exponent")
             ex = "-" if not e else (e["failure"] if e["failure"] else "%.3g +- %.2g" % (e["lambda_per_s"], e["ci95_per_s"]))
             rates = []
