@@ -58,8 +58,9 @@ for name in runs:
                       f"({g['verdict']['kind']}) | {c['verdict']} |")
 print()
 print("| case | run | signal | mean | std | stationary | seed embedding | AMI/FNN embedding | lines | K | DET | "
-      "Rosenstein (seed d, m) [1/s] | surrogates: NLPE rank, TRA p | separation rate [1/s] | two trajectories [1/s] | verdict |")
-print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+      "Rosenstein (seed d, m) [1/s] | Wolf (seed d, m) [1/s] | surrogates: NLPE rank, TRA p | separation rate [1/s] "
+      "| two trajectories [1/s] | verdict |")
+print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
 for name in runs:
     j = json.load(open(f"{out}/{name}.json"))
     for s in j["scenarios"]:
@@ -73,6 +74,8 @@ for name in runs:
             sur = g.get("surrogates", {}).get("statistics", [])
             nl = next((x for x in sur if x["name"] == "prediction_error"), None)
             tr = next((x for x in sur if x["name"] == "time_reversal_asymmetry"), None)
+            wo = g.get("wolf", {}).get(f"m{se['m']}", {})
+            wolf = "%.3g +- %.2g" % (wo["lambda"], wo["ci95"]) if "lambda" in wo else ("no estimate" if "error" in wo else "-")
             e = s.get("equation_exponent")
             ex = "-" if not e else (e["failure"] if e["failure"] else "%.3g +- %.2g" % (e["lambda_per_s"], e["ci95_per_s"]))
             rates = []
@@ -88,6 +91,6 @@ for name in runs:
                   f"| {100 * li['power_fraction_in_lines']:.1f} %{', all link-rate harmonics' if li['all_explained'] else ''} "
                   f"| {se['test01']['K']:.2f} | {se['rqa']['DET']:.2f} "
                   f"| {se['rosenstein']['lambda']:.3g} +- {se['rosenstein']['ci95']:.2g}{'' if se['rosenstein']['fit']['scaling_region'] else ' (no scaling region)'} "
-                  f"| {nl['rank_low'] if nl else '-'} of {len(nl['surrogates']) + 1 if nl else '-'}, {tr['p'] if tr else '-'} "
+                  f"| {wolf} | {nl['rank_low'] if nl else '-'} of {len(nl['surrogates']) + 1 if nl else '-'}, {tr['p'] if tr else '-'} "
                   f"| {', '.join(rates) or '-'} | {ex} | {g['verdict']['verdict']} ({g['verdict']['kind']}) |")
 PY

@@ -65,7 +65,7 @@ Section4Result section4_pipeline(const std::vector<double>& x_all, const Section
   const Classification& c = r.verdict;
   stage(2);
   // The estimators classify does not run: Cao's dimension and Kantz's
-  // exponent, with classify's embedding and Theiler window.
+  // and Wolf's exponents, with classify's embedding and Theiler window.
   const std::vector<double> z = zscore(x);
   CaoOptions cao_opt;
   cao_opt.tau = c.tau;
@@ -79,6 +79,16 @@ Section4Result section4_pipeline(const std::vector<double>& x_all, const Section
     // A transient that never returns near itself leaves Kantz without
     // neighbourhoods outside the Theiler window; the rest still stands.
     r.kantz_error = e.what();
+  }
+  try {
+    WolfOptions wo;
+    wo.m = c.m;
+    wo.tau = c.tau;
+    wo.theiler = c.theiler;
+    wo.dt = opt.dt;
+    r.wolf = lle_wolf(z, wo);
+  } catch (const InputError& e) {
+    r.wolf_error = e.what();
   }
   stage(4);
   const auto f = series_figures(x, opt.dt, label, out_dir, c.tau, c.m);

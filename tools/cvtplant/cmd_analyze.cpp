@@ -93,6 +93,15 @@ json lle_json(const LleResult& r, const char* method, int m, int tau) {
           {"eps", r.eps},     {"mean_neighbours", r.mean_neighbours}, {"points", r.points},
           {"divergence", r.divergence}};
 }
+json wolf_json(const WolfResult& r) {
+  return {{"method", "wolf"},       {"lambda", r.lambda},           {"ci95", r.ci95},
+          {"batch_lambda", r.batch_lambda}, {"m", r.m},             {"tau", r.tau},
+          {"theiler", r.theiler},   {"evolve", r.evolve},           {"scale_min", r.scale_min},
+          {"scale_max", r.scale_max}, {"max_angle_rad", r.max_angle_rad}, {"points", r.points},
+          {"steps", r.steps},       {"kept", r.kept},               {"replaced", r.replaced},
+          {"relaxed", r.relaxed},   {"unreplaced", r.unreplaced},   {"collapsed", r.collapsed},
+          {"mean_angle_rad", r.mean_angle_rad}, {"mean_log_scale", r.mean_log_scale}};
+}
 json rqa_json(const RqaResult& r, int m, int tau, const RqaOptions& o) {
   return {{"RR", r.rr},   {"DET", r.det},   {"L", r.l_mean},    {"Lmax", r.lmax}, {"ENTR", r.entr},
           {"LAM", r.lam}, {"TT", r.tt},     {"Vmax", r.vmax},   {"eps", r.eps},   {"theiler", r.theiler},

@@ -17,6 +17,7 @@
 #include "cvtplant/analysis/csv.hpp"
 #include "cvtplant/analysis/lle.hpp"
 #include "cvtplant/analysis/rqa.hpp"
+#include "cvtplant/analysis/wolf.hpp"
 
 namespace cvtcli::analyze {
 
@@ -58,6 +59,8 @@ int pick_theiler(const SeriesArgs& a, const std::vector<double>& x);
 int pick_m(const SeriesArgs& a, const std::vector<double>& x, int tau, int w);
 
 nlohmann::json lle_json(const cvt::analysis::LleResult& r, const char* method, int m, int tau);
+// Wolf et al.'s exponent with its options and bookkeeping (docs/analysis.md#wolf).
+nlohmann::json wolf_json(const cvt::analysis::WolfResult& r);
 nlohmann::json rqa_json(const cvt::analysis::RqaResult& r, int m, int tau, const cvt::analysis::RqaOptions& o);
 // `classify --json` fields (docs/analysis.md#cli).
 nlohmann::json classification_json(const cvt::analysis::Classification& r);

@@ -57,7 +57,8 @@ json section4_json(const Section4Result& r, const std::string& unit) {
               {"rtol", 10.0}, {"atol", 2.0}};
   j["cao"] = {{"m", r.cao.m}, {"E1", r.cao.e1}, {"E2", r.cao.e2}, {"dimension", r.cao.dimension}, {"reached", r.cao.reached}};
   j["lle"] = {{"rosenstein", lle_json(c.lle, "rosenstein", c.m, c.tau)},
-              {"kantz", r.kantz_error.empty() ? lle_json(r.kantz, "kantz", c.m, c.tau) : json{{"error", r.kantz_error}}}};
+              {"kantz", r.kantz_error.empty() ? lle_json(r.kantz, "kantz", c.m, c.tau) : json{{"error", r.kantz_error}}},
+              {"wolf", r.wolf_error.empty() ? wolf_json(r.wolf) : json{{"error", r.wolf_error}}}};
   j["rqa"] = rqa_json(c.rqa, c.m, c.tau, c.rqa_options);
   return j;
 }

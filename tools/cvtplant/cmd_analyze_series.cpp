@@ -1,10 +1,11 @@
 // The series tools of `cvtplant analyze` (docs/analysis.md#cli): ami, fnn,
-// cao, lle, rqa and recurrence, test01, classify, each on one CSV column.
+// cao, lle (Rosenstein, Kantz, Wolf), rqa and recurrence, test01, classify, each on one CSV column.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "cmd_analyze.hpp"
@@ -15,6 +16,7 @@
 #include "cvtplant/analysis/figures.hpp"
 #include "cvtplant/analysis/series.hpp"
 #include "cvtplant/analysis/test01.hpp"
+#include "cvtplant/analysis/wolf.hpp"
 
 namespace cvtcli::analyze {
 
@@ -108,13 +110,28 @@ Tool add_lle(CLI::App* an) {
   auto a = std::make_shared<SeriesArgs>();
   auto method = std::make_shared<std::string>("rosenstein");
   auto o = std::make_shared<LleOptions>();
-  auto* c = an->add_subcommand("lle", "largest Lyapunov exponent (Rosenstein or Kantz) with automatic scaling region");
+  auto wo = std::make_shared<WolfOptions>();
+  auto* c = an->add_subcommand("lle", "largest Lyapunov exponent: Rosenstein or Kantz (automatic scaling region), "
+                                      "Wolf et al. (fixed evolution time)");
   add_series_options(c, *a, true);
-  c->add_option("--method", *method, "rosenstein | kantz | both")->check(CLI::IsMember({"rosenstein", "kantz", "both"}));
+  c->add_option("--method", *method, "rosenstein | kantz | wolf | both (rosenstein and kantz) | all")
+      ->check(CLI::IsMember({"rosenstein", "kantz", "wolf", "both", "all"}));
   cvtcli::add_int(c, "--k-max", o->k_max, 1, 1000000, "divergence horizon [samples] (default 5 mean periods)");
   cvtcli::add_real(c, "--eps", o->eps, {0, 1e3, true},
                    "Kantz radius in std units (default: median 10th-neighbour distance)");
-  return {c, [a, method, o] {
+  cvtcli::add_int(c, "--evolve", wo->evolve, 1, 1000000,
+                  "Wolf: evolution time [samples] (default a quarter of the mean period, at least 1)");
+  cvtcli::add_real(c, "--scale-min", wo->scale_min, {0, 1e3, true},
+                   "Wolf: smallest separation in std units (default 1e-3 of the series' extent)");
+  cvtcli::add_real(c, "--scale-max", wo->scale_max, {0, 1e3, true},
+                   "Wolf: separation at which the neighbour is replaced, in std units (default 0.1 of the extent)");
+  cvtcli::add_real(c, "--max-angle", wo->max_angle_rad, {0, 1.5707963267948966, true},
+                   "Wolf: largest angle [rad] between a replacement and the old separation (default 0.3)");
+  return {c, [a, method, o, wo, c] {
+    const bool wolf = *method == "wolf" || *method == "all";
+    for (const char* flag : {"--evolve", "--scale-min", "--scale-max", "--max-angle"})
+      if (!wolf && c->get_option(flag)->count() > 0)
+        throw cvtcli::UsageError{std::string(flag) + " applies to --method wolf or all"};
     const auto x = load(*a, 100);
     LleOptions lo = *o;
     lo.dt = a->dt;
@@ -122,16 +139,30 @@ Tool add_lle(CLI::App* an) {
     lo.theiler = pick_theiler(*a, x);
     lo.m = pick_m(*a, x, lo.tau, lo.theiler);
     json j = json::object();
-    if (*method != "kantz") j["rosenstein"] = lle_json(lle_rosenstein(x, lo), "rosenstein", lo.m, lo.tau);
-    if (*method != "rosenstein") j["kantz"] = lle_json(lle_kantz(x, lo), "kantz", lo.m, lo.tau);
+    if (*method != "kantz" && *method != "wolf")
+      j["rosenstein"] = lle_json(lle_rosenstein(x, lo), "rosenstein", lo.m, lo.tau);
+    if (*method == "kantz" || *method == "both" || *method == "all")
+      j["kantz"] = lle_json(lle_kantz(x, lo), "kantz", lo.m, lo.tau);
+    if (wolf) {
+      WolfOptions w = *wo;
+      std::tie(w.m, w.tau, w.theiler, w.dt) = std::make_tuple(lo.m, lo.tau, lo.theiler, lo.dt);
+      j["wolf"] = wolf_json(lle_wolf(x, w));
+    }
     if (a->json) {
       cvtcli::print_json(j);
-    } else {
-      for (auto& [k, v] : j.items())
-        std::printf("%s: lambda = %.6g +- %.2g per unit time (m %d, tau %d, Theiler %d, fit samples "
-                    "%d..%d, R^2 %.4f, scaling region %s)\n",
-                    k.c_str(), v["lambda"].get<double>(), v["ci95"].get<double>(), lo.m, lo.tau,
-                    v["theiler"].get<int>(), v["fit"]["k_begin"].get<int>(),
+      return 0;
+    }
+    for (auto& [k, v] : j.items()) {
+      std::printf("%s: lambda = %.6g +- %.2g per unit time (m %d, tau %d, Theiler %d, ", k.c_str(),
+                  v["lambda"].get<double>(), v["ci95"].get<double>(), lo.m, lo.tau, v["theiler"].get<int>());
+      if (k == "wolf")
+        std::printf("evolution %d samples, scales %.3g..%.3g, %d steps: %d kept, %d replaced, %d relaxed, %d "
+                    "unreplaced)\n",
+                    v["evolve"].get<int>(), v["scale_min"].get<double>(), v["scale_max"].get<double>(),
+                    v["steps"].get<int>(), v["kept"].get<int>(), v["replaced"].get<int>(), v["relaxed"].get<int>(),
+                    v["unreplaced"].get<int>());
+      else
+        std::printf("fit samples %d..%d, R^2 %.4f, scaling region %s)\n", v["fit"]["k_begin"].get<int>(),
                     v["fit"]["k_end"].get<int>(), v["fit"]["r2"].get<double>(),
                     v["fit"]["scaling_region"].get<bool>() ? "yes" : "no");
     }

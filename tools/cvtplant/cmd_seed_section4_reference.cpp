@@ -9,7 +9,9 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <tuple>
 
+#include "cmd_analyze.hpp"
 #include "commands.hpp"
 #include "cvtplant/analysis/chaos_verdict.hpp"
 #include "cvtplant/analysis/classify.hpp"
@@ -265,6 +267,18 @@ json analyse_signal(const Section4Reference& o, const SeedChoices& sc, const Sce
   lo.m = sc.m_alt;
   const an::LleResult alt = an::lle_rosenstein(z, lo);
   j["divergence"] = {{"m" + std::to_string(m), fit_json(seed.lle.fit)}, {"m" + std::to_string(sc.m_alt), fit_json(alt.fit)}};
+  // The seed's Fig. 18 also reports Wolf et al.'s estimate: at the same two embeddings.
+  json wolf = json::object();
+  for (int wm : {m, sc.m_alt}) {
+    an::WolfOptions wo;
+    std::tie(wo.m, wo.tau, wo.theiler, wo.dt) = std::make_tuple(wm, tau, seed.theiler, dt);
+    try {
+      wolf["m" + std::to_string(wm)] = analyze::wolf_json(an::lle_wolf(z, wo));
+    } catch (const an::InputError& e) {
+      wolf["m" + std::to_string(wm)] = {{"error", e.what()}};
+    }
+  }
+  j["wolf"] = wolf;
   json lj = json::array();
   std::vector<double> explained_Hz;
   for (const auto& a : se.attribution) {

@@ -88,6 +88,23 @@ fi
 expect 2 "cannot read" -- "$BIN" analyze fnn --csv "$TMP/does_not_exist.csv" --column s
 expect 2 "too few points" -- "$BIN" analyze lle --csv "$TMP/sine.csv" --column s --m 10 --tau 210
 expect 2 "" -- "$BIN" analyze lle --csv "$TMP/sine.csv" --column s --method foo
+# Wolf's estimator (docs/analysis.md#wolf): its options only with it, scales in order, an angle up to pi/2.
+expect 2 "--evolve applies to --method wolf or all" -- "$BIN" analyze lle --csv "$TMP/sine.csv" --column s --evolve 5
+expect 2 "smallest separation .* must be below the replacement scale" -- \
+  "$BIN" analyze lle --csv "$TMP/sine.csv" --column s --method wolf --scale-min 0.5 --scale-max 0.1
+expect 2 "--max-angle: .2. is outside" -- "$BIN" analyze lle --csv "$TMP/sine.csv" --column s --method wolf --max-angle 2
+expect 2 "too few points" -- "$BIN" analyze lle --csv "$TMP/sine.csv" --column s --method wolf --m 3 --tau 5 --evolve 100
+out=$("$BIN" analyze lle --csv "$TMP/sine.csv" --column s --method all --json) || { echo "FAIL lle --method all"; fail=1; }
+python3 - "$out" <<'PY' && echo "ok: lle --method all: the three estimators, Wolf ~0 on a sine" || { echo "FAIL: lle --method all: $out"; fail=1; }
+import json, sys
+j = json.loads(sys.argv[1])
+w = j["wolf"]
+assert set(j) == {"rosenstein", "kantz", "wolf"}, j.keys()
+for k in ("lambda", "ci95", "evolve", "scale_min", "scale_max", "max_angle_rad", "steps", "kept", "replaced", "relaxed",
+          "unreplaced", "theiler", "m", "tau"):
+    assert k in w, k
+assert abs(w["lambda"]) < 1e-3 and w["steps"] > 50, w
+PY
 expect 2 "unknown scene 'nope'" -- "$BIN" lyapunov --scene nope --t-end 10
 expect 2 "expected 3 comma-separated values" -- "$BIN" lyapunov --scene lorenz --x0 1,2 --t-end 10
 expect 2 "no parameter 'rhoo'" -- "$BIN" lyapunov --scene lorenz --param rhoo=28 --t-end 10

@@ -46,6 +46,9 @@ SERIES_MEASURES = {
     "window_spread", "divergence", "mean_neighbours", "worst_harmonic_error", "fundamental_cycles_per_sample",
     "peaks_cycles_per_sample", "tau", "m", "theiler", "bins", "tau_acf_zero", "tau_ami_first_minimum", "dimension",
     "k_begin", "k_end", "k_max", "Lmax", "Vmax", "lmin", "vmin", "n_c", "subsample",
+    # Wolf et al.'s estimator: evolution time in samples, scales in std units, its step counts
+    "evolve", "scale_min", "scale_max", "batch_lambda", "mean_log_scale", "kept", "replaced", "relaxed", "unreplaced",
+    "collapsed",
 }
 # Keys of rows whose unit is named beside them (`unit`, or a `name` with a unit suffix).
 ROW_VALUES = {"value", "start", "sigma", "plant_ss", "reference_ss", "mean", "std", "peak_to_peak", "line_amplitude"}
@@ -204,6 +207,7 @@ class Schema(unittest.TestCase):
     def test_analyze_series(self):
         for sub in ("ami", "fnn", "cao", "lle", "rqa", "test01", "classify"):
             self.check(run_json("analyze", sub, "--csv", self.csv, "--column", "s"), exempt=SERIES_MEASURES)
+        self.check(run_json("analyze", "lle", "--method", "all", "--csv", self.csv, "--column", "s"), exempt=SERIES_MEASURES)
         png = os.path.join(self.tmp.name, "rp.png")
         self.check(run_json("analyze", "recurrence", "--csv", self.csv, "--column", "s", "--png", png),
                    exempt=SERIES_MEASURES)

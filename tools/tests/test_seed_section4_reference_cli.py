@@ -19,6 +19,7 @@ fields and what the reference must show there, not just that it ran:
 Usage: test_seed_section4_reference_cli.py CVTPLANT TMPDIR
 """
 import json
+import math
 import os
 import shutil
 import subprocess
@@ -119,6 +120,11 @@ def main():
               "%s: 5 surrogates, three statistics ranked" % name)
         check(len(g["convergence"]) == 1 and g["convergence"][0]["rtol"] == 5e-8 and
               "separation_from_base" in g["convergence"][0], "%s: the 10x run and its separation" % name)
+        wolf = g["wolf"]
+        check(set(wolf) == {"m3", "m10"} and all(
+            math.isfinite(w["lambda"]) and w["m"] == int(k[1:]) and w["tau"] == 1 and w["evolve"] >= 1 and
+            w["steps"] + w["collapsed"] == w["kept"] + w["replaced"] + w["relaxed"] + w["unreplaced"] + 1
+            for k, w in wolf.items()), "%s: Wolf's exponent at m = 3 and 10, its steps accounted for" % name)
         v = g["verdict"]
         check(v["verdict"] in ("chaotic", "regular", "undecided"), "%s: verdict %s" % (name, v["verdict"]))
         if not g["stationarity"]["stationary"]:

@@ -1,7 +1,7 @@
 #pragma once
 // The seed's section 4 pipeline on one sampled plant signal
 // (docs/analysis.md#seed-section4): transient removed, normalised, delay from
-// AMI, dimension from FNN (and Cao), largest exponent (Rosenstein and Kantz),
+// AMI, dimension from FNN (and Cao), largest exponent (Rosenstein, Kantz and Wolf),
 // recurrence plot and RQA, 0-1 test, and the classify verdict, with figures.
 #include <functional>
 #include <string>
@@ -9,6 +9,7 @@
 
 #include "cvtplant/analysis/classify.hpp"
 #include "cvtplant/analysis/embedding.hpp"
+#include "cvtplant/analysis/wolf.hpp"
 
 namespace cvt::analysis {
 
@@ -39,6 +40,8 @@ struct Section4Result {
   CaoResult cao;
   LleResult kantz;
   std::string kantz_error;  // set when Kantz's estimator cannot run on this series (e.g. no recurrence)
+  WolfResult wolf;          // Wolf et al.'s estimate at the same embedding (docs/analysis.md#wolf)
+  std::string wolf_error;   // set when it cannot run (e.g. no neighbour outside the Theiler window)
   std::vector<std::string> figures;  // PNG paths
 };
 
