@@ -144,15 +144,15 @@ void write_tables(const std::string& dir, const std::vector<ScenarioComparison>&
   f = open_out(sc);
   std::fprintf(f,
                "scenario,description,verdict_rom,verdict_ref,verdicts_agree,criteria,criteria_agreeing,"
-               "sim_s,ref_step_cpu_s,ref_realtime_factor,ref_release_cpu_s,ref_release_cached\n");
+               "sim_s,ref_step_cpu_s,ref_realtime_factor,ref_release_cpu_s,ref_release_cached,ref_lifted_frames\n");
   for (const ScenarioComparison& c : all) {
     int agreeing = 0;
     for (const CriterionPair& p : c.criteria) agreeing += p.agree ? 1 : 0;
-    std::fprintf(f, "%s,%s,%s,%s,%d,%zu,%d,%.3f,%.3f,%s,%.3f,%d\n", c.name(), csv_text(c.rom.what).c_str(),
+    std::fprintf(f, "%s,%s,%s,%s,%d,%zu,%d,%.3f,%.3f,%s,%.3f,%d,%ld\n", c.name(), csv_text(c.rom.what).c_str(),
                  c.rom.pass() ? "PASS" : "FAIL", c.ref.pass() ? "PASS" : "FAIL", c.verdicts_agree ? 1 : 0,
                  c.criteria.size(), agreeing, c.ref_sim_s, c.ref_step_cpu_s,
                  csv_number(c.ref_step_cpu_s > 0 ? c.ref_sim_s / c.ref_step_cpu_s : NAN).c_str(), c.ref_reset_cpu_s,
-                 c.ref_release_cached ? 1 : 0);
+                 c.ref_release_cached ? 1 : 0, c.ref_lifted_frames);
   }
   close_out(f, sc);
 }
@@ -188,6 +188,7 @@ std::vector<ScenarioComparison> compare_scenarios(const CompareOptions& o) {
     c.ref_step_cpu_s = rp.step_cpu_s();
     c.ref_reset_cpu_s = rp.reset_cpu_s();
     c.ref_release_cached = rp.release_from_cache();
+    c.ref_lifted_frames = rp.lifted_frames();
     c.ref_sim_s = static_cast<double>(rp.frames()) * static_cast<double>(rp.frame_ns()) * 1e-9;
     // Every criterion of either run, in the plant run's order, then any the
     // reference's run alone has.

@@ -235,6 +235,9 @@ void ReferencePlant::reset() {
   actuator_N_[0] = stepper_ ? stepper_->inputs().clamp1_N : 0.0;
   actuator_N_[1] = stepper_ ? stepper_->inputs().clamp2_N : 0.0;
   driven_cmd_N_ = actuator_N_[1];
+  lifted_frames_ = 0;
+  held_radius_m_[0] = held_radius_m_[1] = 0.0;
+  if (stepper_) hold_radii();
   reset_cpu_s_ = thread_cpu_s() - c0;
 }
 
@@ -259,6 +262,7 @@ void ReferencePlant::step(const cvt::RomInputs<double>& u) {
   in.tau_load_Nm = u.tau_load_Nm;
   stepper_->step(in);
   ++frames_;
+  if (!hold_radii()) ++lifted_frames_;
   if (stepper_->faulted()) {
     fail(stepper_->outputs().fault, stepper_->fault_message());
   } else if (opt_.inject.kind != StepFault::none && stepper_->t_s() >= opt_.inject.at_s - 1e-12) {
@@ -266,6 +270,20 @@ void ReferencePlant::step(const cvt::RomInputs<double>& u) {
                                                         " injected (test hook)"));
   }
   step_cpu_s_ += thread_cpu_s() - c0;
+}
+
+bool ReferencePlant::hold_radii() {
+  const cvt::mbd::StepOutputs& r = stepper_->outputs();
+  const double now[2] = {r.r1_m, r.r2_m};
+  bool both = true;
+  for (int j = 0; j < 2; ++j) {
+    if (std::isfinite(now[j]) && now[j] > 0) {
+      held_radius_m_[j] = now[j];
+    } else {
+      both = false;
+    }
+  }
+  return both;
 }
 
 const cvt::mbd::StepOutputs& ReferencePlant::reference_outputs() const {
@@ -280,10 +298,16 @@ cvt::RomOutputs<double> ReferencePlant::outputs() const {
   o.omega1_rad_s = r.omega1_rad_s;
   o.omega2_rad_s = r.omega2_rad_s;
   o.speed_ratio = r.speed_ratio;
-  o.geometric_ratio = r.geometric_ratio;
-  o.radius1_m = r.r1_m;
-  o.radius2_m = r.r2_m;
-  o.slip = r.slip;
+  // docs/sil.md#reference-outputs: in a frame that ends with no bolt
+  // compressed in a wrap (the chain lifted off a slipping pulley) the
+  // reference has no running radius there; the bus carries the last one, and
+  // the ratio and the slip from it, not a radius of 0. The chain's force and
+  // torque on that pulley are 0, as reported.
+  o.radius1_m = held_radius_m_[0];
+  o.radius2_m = held_radius_m_[1];
+  o.geometric_ratio = held_radius_m_[0] > 0 ? held_radius_m_[1] / held_radius_m_[0] : 0.0;
+  const double v1_m_s = r.omega1_rad_s * held_radius_m_[0];
+  o.slip = std::fabs(v1_m_s) < 1e-3 ? 0.0 : r.slip1_m_s / v1_m_s;  // as the stepper's, on the held radius
   o.clamp_force_N = r.F_ax1_N;
   // The bus carries the torque the driver pulley passes to the chain (the
   // real-time plant's friction torque on its lumps, docs/rom.md#outputs);

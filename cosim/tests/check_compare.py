@@ -115,6 +115,7 @@ def main():
         check((s["verdicts_agree"] == "1") == (agree_rows == len(rows)), "%s: verdicts_agree" % name)
         check(abs(float(s["sim_s"]) - T_END) < 1e-6, "%s: the reference ran %s s" % (name, s["sim_s"]))
         check(float(s["ref_step_cpu_s"]) > 0, "%s: the reference's CPU is measured" % name)
+        check(s["ref_lifted_frames"].isdigit(), "%s: the reference's held frames counted" % name)
         # The overlay against each run's own trace.
         ov = read_csv(os.path.join(out, "compare-%s.csv" % name))
         n = int(round(T_END / 0.01))
@@ -129,6 +130,10 @@ def main():
                         check(False, "%s t=%s: %s_%s %s, the run's trace %s" % (
                             name, o["t_s"], col, side, o["%s_%s" % (col, side)], w[wcol]))
                         break
+        # A wrap with no bolt compressed holds its running radius: the
+        # reference's ratio is never 0 (docs/sil.md#reference-outputs).
+        zero = [o["t_s"] for o in ov if not num(o["ratio_ref"]) > 0]
+        check(not zero, "%s: the reference's geometric ratio is 0 or undefined at t = %s" % (name, zero[:5]))
         for t in (t for t in traces if t["scenario"] == name):
             a = [num(o[t["trace"] + "_rom"]) for o in ov]
             b = [num(o[t["trace"] + "_ref"]) for o in ov]

@@ -55,6 +55,7 @@ struct ScenarioComparison {
   // The reference's cost: CPU seconds of its steps and of its release state
   // (the start-up, or 0 from the cache), and the simulated time it ran.
   double ref_step_cpu_s = 0, ref_reset_cpu_s = 0, ref_sim_s = 0;
+  long ref_lifted_frames = 0;  // frames whose running radii were held (docs/sil.md#reference-outputs)
   bool ref_release_cached = false;
   const char* name() const { return rom.name.c_str(); }
 };

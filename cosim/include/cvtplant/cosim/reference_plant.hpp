@@ -91,6 +91,9 @@ class ReferencePlant {
   double driven_clamp_N() const { return actuator_N_[1]; }  // the driven actuator's force
   double driver_clamp_N() const { return actuator_N_[0]; }
   long stop_refined_frames() const { return 0; }
+  // Frames since reset() that ended with no bolt compressed in a wrap, so
+  // that its running radius (and the ratio, the slip) was held.
+  long lifted_frames() const { return lifted_frames_; }
 
   // Real time (docs/sil.md#reference-realtime): a probe of the scene's first
   // probe_frames frames from its release on another stepper; keeps time when
@@ -108,6 +111,9 @@ class ReferencePlant {
  private:
   struct Loaded;
   void fail(cvt::mbd::StepFault f, const std::string& what);
+  // Keeps each wrap's running radius where it is defined; false when a wrap
+  // has none this frame.
+  bool hold_radii();
 
   ReferenceOptions opt_;
   const cvt::Scene* scene_ = nullptr;
@@ -117,6 +123,10 @@ class ReferencePlant {
   long frames_ = 0;
   double actuator_N_[2] = {0, 0};
   double driven_cmd_N_ = 0;
+  // The running radii last defined (docs/sil.md#reference-outputs): a wrap
+  // with no bolt compressed has none, the bus carries the last one.
+  double held_radius_m_[2] = {0, 0};
+  long lifted_frames_ = 0;
   cvt::mbd::StepFault fault_ = cvt::mbd::StepFault::none;
   std::string fault_message_, load_refusal_;
   double step_cpu_s_ = 0, reset_cpu_s_ = 0;
