@@ -16,6 +16,8 @@
 #include "validation_options.hpp"
 #include "cvtplant/validation/reference.hpp"
 #include "cvtplant/validation/report.hpp"
+#include "cvtplant/files/paths.hpp"
+#include "cvtplant/files/replace.hpp"
 #include "cvtplant/validation/suite_check.hpp"
 
 namespace cvtcli {
@@ -226,24 +228,47 @@ int run_validate_suite(const SuiteCliOptions& o) {
   if (total_s > o.max_sim_s)
     throw UsageError{"suite " + o.suite + ": " + num(total_s) + " s of reference exceeds --max-t-end " +
                      num(o.max_sim_s) + " s (raise it, or --no-maps / --uncertainty none)"};
-  prepare_out_dir(o.ref);
   const std::string dir = o.ref.out_dir + "/suite-" + o.suite;
+  // Every file read and written, before any run: no overlay over the plant's
+  // scene or parameter file (docs/cli.md#files).
+  {
+    cvt::files::CommandFiles files;
+    if (plant->source != "built-in") files.input("--scene", plant->source);
+    if (!o.params.empty()) files.input("--params", o.params);
+    std::vector<val::Manoeuvre> all = suite.fit;
+    all.insert(all.end(), suite.held_out.begin(), suite.held_out.end());
+    for (const auto& m : all) {
+      const std::string who = "--out-dir (manoeuvre " + m.name + ")";
+      files.output(who, dir + "/" + m.name + ".csv");
+      if (o.figures) {
+        files.output(who, dir + "/" + m.name + ".png");
+        files.output(who, dir + "/" + m.name + ".gp");
+      }
+    }
+  }
+  prepare_out_dir(o.ref);
   std::error_code ec;
   std::filesystem::create_directories(dir + "/maps", ec);
   if (ec) throw UsageError{"--out-dir: cannot create " + dir + "/maps: " + ec.message()};
   val::SuiteResult r;
   {
     Progress progress("validate --suite " + o.suite + ": reference", total_s);
-    r = val::check_suite(suite, plant_scene, cfg, o.ref.out_dir + "/reference-cache", so,
-                         [&](double t) { progress.update(t); });
+    try {
+      r = val::check_suite(suite, plant_scene, cfg, o.ref.out_dir + "/reference-cache", so,
+                           [&](double t) { progress.update(t); });
+    } catch (const Interrupted& e) {
+      // The reference runs finished so far are in the cache (whole entries
+      // only); the one under way is not stored.
+      throw Interrupted{"suite " + o.suite + "'s reference runs, " + e.at, false};
+    }
   }
   for (const std::string& p : r.cache_problems) report_cache_problem("validate", p);
   std::vector<std::string> csvs, pngs;
   for (const auto& k : r.runs) {
     csvs.push_back(dir + "/" + k.m.name + ".csv");
-    std::FILE* f = open_output(csvs.back());
-    val::write_overlay_csv(f, k.plant, k.ref.series);
-    close_output(f);
+    cvt::files::ReplacingFile f(csvs.back());
+    val::write_overlay_csv(f.stream(), k.plant, k.ref.series);
+    f.commit();
     pngs.emplace_back();
     if (o.figures) {
       pngs.back() = dir + "/" + k.m.name + ".png";

@@ -73,6 +73,23 @@ class CiSuite(unittest.TestCase):
         self.assertEqual(limits["omega1 RMS"], 0.02)
         self.assertEqual(limits["mean F_ax1"], 0.05)
 
+    def test_an_overlay_never_replaces_the_params_file(self):
+        # The parameter file sits where a manoeuvre's overlay CSV would go:
+        # refused before any run, the file as it was.
+        name = json.loads(self.first.stdout)["runs"][0]["name"]
+        with tempfile.TemporaryDirectory() as d:
+            os.makedirs(os.path.join(d, "suite-ci"))
+            params = os.path.join(d, "suite-ci", name + ".csv")
+            with open(params, "w") as f:
+                f.write("[params]\nk1_N_m = 2500.0\n")
+            r = run(*CI, "--params", params, "--out-dir", d)
+            self.assertEqual(r.returncode, 2, r.stderr)
+            self.assertIn("is the input of --params", r.stderr)
+            self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
+            with open(params) as f:
+                self.assertEqual(f.read(), "[params]\nk1_N_m = 2500.0\n")
+            self.assertFalse(os.path.exists(os.path.join(d, "reference-cache")))
+
     def test_the_cache_gives_the_same_answer(self):
         a, b = json.loads(self.first.stdout), json.loads(self.second.stdout)
         self.assertEqual(b["from_cache"], 2)
