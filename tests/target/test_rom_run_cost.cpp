@@ -136,6 +136,19 @@ CVT_TARGET_TEST(rom_run_frame_flatness_float) {
   CHECK_GE(seed.median_exact + 5u, seed.median);
 }
 
+// Every feature of the variable-ratio plant at once (docs/rom.md#tension-radial):
+// ratio-control with the chain's tension state through a 3.3 -> 3.5 kN
+// upshift at 2 s, off the end stops, 3 s of frames: the worst frame within
+// 1.2 times the median and within the goal of 5,000 instructions.
+CVT_TARGET_TEST(rom_run_frame_flatness_full_composition_float) {
+  namespace f = rom_feature;
+  const RunStats full = run_counts<float, f::axial | f::road_load | f::wedging | f::tension>(
+      rom_cost::Case{"scene/ratio-control-tension", "ratio-control", 0, true, nullptr, &rom_cost::primary_step}, 3000);
+  CHECK_EQ(full.frames, 3000L);
+  CHECK_LE(10u * full.max_exact, 12u * full.median_exact);
+  CHECK_LE(full.max_exact, 5000u);
+}
+
 // The variable-ratio plant onto its hub stop: clamp-step with wedging, whose
 // 1.2 kN start drives the chain onto the stop, for its first 2.5 s. Frames
 // near the stop take two substeps of one W (docs/rom.md#end-stop), the others

@@ -1,14 +1,18 @@
 #pragma once
 // Every plant of every scalar type, for the host tools (the CLI, the analysis
-// toolkit, the SIL bridge): in double and float 33 feature masks, the 16 of
-// the first four features, the 8 with wedging (which needs axial), the 8
-// with tension and any of axial, road load and deformation, and tension with
-// polygon (the link-passing ripple's scene); in q16.16 the 25 without
-// wedging. Their code is compiled once, split
-// over several translation units in lib/src/ so a build compiles them in
-// parallel, and linked from the cvtplant::all_plants library; a caller of
-// AllRomPlants<T>::build compiles none of it. Firmware uses a RomPlantSet of
-// the masks it ships instead (scene/plant_set.hpp).
+// toolkit, the SIL bridge): every feature combination a scene can ask for
+// (rom_feature_conflict), in double and float, and every one without
+// wedging in q16.16. The stateless features road load and deformation are
+// carried by every plant and switched at set-up (CvtRom's run-time bits), so
+// the combinations of the others are the plant types: in double and float
+// the 8 of axial, polygon and tension and the 4 with wedging (which needs
+// axial) with polygon and tension, in q16.16 the 8 without wedging; 32 types
+// for the 128 combinations (docs/rom.md#build-time). Their code is compiled
+// once, split over several translation units in lib/src/ so a build
+// compiles them in parallel, and linked from the cvtplant::all_plants
+// library; a caller of AllRomPlants<T>::build compiles none of it. Firmware
+// uses a RomPlantSet of the masks it ships instead (scene/plant_set.hpp),
+// every bit compiled in.
 #include <cstddef>
 #include <cstdint>
 #include <type_traits>
@@ -19,16 +23,31 @@
 namespace cvt {
 
 namespace all_plants_detail {
+namespace f = rom_feature;
+// The bits every host plant carries and switches at set-up.
+inline constexpr std::uint32_t kRuntime = rom_feature::runtime_capable;
 template <class T>
 constexpr bool kHasWedging = std::is_floating_point<T>::value;
+// The compiled masks of each part (lib/src/all_plants_<scalar>_<part>.cpp).
+template <class T>
+using Plain = RomPlantSetRt<T, kRuntime, 0, f::axial, f::polygon, f::axial | f::polygon>;
+template <class T>
+using Tension = RomPlantSetRt<T, kRuntime, f::tension, f::tension | f::axial, f::tension | f::polygon,
+                              f::tension | f::axial | f::polygon>;
+template <class T>
+using Wedging = RomPlantSetRt<T, kRuntime, f::axial | f::wedging, f::axial | f::wedging | f::polygon,
+                              f::axial | f::wedging | f::tension, f::axial | f::wedging | f::polygon | f::tension>;
 // Every mask of scalar T; the storage size and alignment come from this set,
 // the code from lib/src.
 template <class T>
-using Masks = std::conditional_t<kHasWedging<T>,
-                                 RomPlantSet<T, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 17, 19, 21, 23,
-                                             25, 27, 29, 31, 32, 33, 34, 35, 36, 37, 38, 39, 40>,
-                                 RomPlantSet<T, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 32, 33, 34, 35,
-                                             36, 37, 38, 39, 40>>;
+using Masks = std::conditional_t<
+    kHasWedging<T>,
+    RomPlantSetRt<T, kRuntime, 0, f::axial, f::polygon, f::axial | f::polygon, f::tension, f::tension | f::axial,
+                  f::tension | f::polygon, f::tension | f::axial | f::polygon, f::axial | f::wedging,
+                  f::axial | f::wedging | f::polygon, f::axial | f::wedging | f::tension,
+                  f::axial | f::wedging | f::polygon | f::tension>,
+    RomPlantSetRt<T, kRuntime, 0, f::axial, f::polygon, f::axial | f::polygon, f::tension, f::tension | f::axial,
+                  f::tension | f::polygon, f::tension | f::axial | f::polygon>>;
 }  // namespace all_plants_detail
 
 template <class T>
