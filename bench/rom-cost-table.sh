@@ -25,8 +25,8 @@ trap 'rm -rf "$work"' EXIT
 echo "building the Cortex-M4F target image and running it under QEMU..." >&2
 [ -f build/cortex-m4f/CMakeCache.txt ] || cmake --preset cortex-m4f >&2
 cmake --build --preset cortex-m4f --target cvt_target_tests >&2
-# target_tests keeps its console output (ICOUNT and HASH lines) in this log.
-ctest --test-dir build/cortex-m4f -R '^target_tests$' --output-on-failure >&2
+# tests.target keeps its console output (ICOUNT and HASH lines) in this log.
+ctest --test-dir build/cortex-m4f -R '^tests.target$' --output-on-failure >&2
 m4_log=build/cortex-m4f/tests/target/trace_hash.log
 
 echo "building and running bench_rom in $host..." >&2

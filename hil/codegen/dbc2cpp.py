@@ -4,11 +4,14 @@ from the DBC (hil/cvtplant.dbc), which stays the single source of truth.
 
 The DBC is parsed with python3-canmatrix (Debian), an independent parser, so a
 DBC that canmatrix reads differently from what we intended shows up here and
-in the agreement test (tests/can/agree_canmatrix.py).
+in the agreement test (hil/tests/can/agree_canmatrix.py).
+
+It also writes the C99 codec (docs/can.md#c-codec) from the same parse.
 
 Usage:
-  dbc2cpp.py --dbc hil/cvtplant.dbc --out hil/codegen/include/cvtplant/can/messages.hpp
-  dbc2cpp.py --dbc hil/cvtplant.dbc --check hil/codegen/include/cvtplant/can/messages.hpp
+  dbc2cpp.py --dbc hil/cvtplant.dbc --out hil/codegen/include/cvtplant/can/messages.hpp \
+      [--c-header hil/codegen/c/include/cvtplant_c/can_messages.h --c-source hil/codegen/c/src/can_messages.c]
+  dbc2cpp.py --dbc hil/cvtplant.dbc --check hil/codegen/include/cvtplant/can/messages.hpp [--c-header ... --c-source ...]
 
 --check exits 1 (printing a diff) when the committed header is not what the
 DBC generates. Conventions enforced here are documented in docs/can.md#codegen.
@@ -194,10 +197,6 @@ class Sig:
             return inv
         return None
 
-    def raw_getter(self):
-        fn = "get_signed" if self.signed else "get_unsigned"
-        return "bits::%s(w, %d, %d)" % (fn, self.start, self.len)
-
     def range_conds(self, var, lo_type, hi_type):
         """Comparisons of `var` against [raw_min, raw_max] that are not
         tautological for a variable whose type spans [lo_type, hi_type]."""
@@ -214,8 +213,9 @@ class Sig:
             return 0, (1 << bits) - 1
         return -(1 << (bits - 1)), (1 << (bits - 1)) - 1
 
-    def pack_lines(self):
-        f = "m.%s" % self.name
+    def pack_lines(self, d):
+        """Encoding of this signal into `w`, in dialect `d` (C++ or C)."""
+        f = d.field(self.name)
         out = []
         if self.kind == "float":
             scaled = f if self.offset == 0 else "(%s - %s)" % (f, flit(self.offset))
@@ -223,59 +223,138 @@ class Sig:
             quotient = ("%s * %s" % (scaled, flit(inv))) if inv is not None else (
                 "%s / %s" % (scaled, flit(self.factor)))
             out += [
-                "  if (!bits::is_finite(%s)) return CodecStatus::NotFinite;" % f,
-                "  if (!(%s >= %s && %s <= %s)) return CodecStatus::OutOfRange;" % (f, flit(self.min), f, flit(self.max)),
+                "  if (!%s(%s)) return %s;" % (d.fn("is_finite"), f, d.status("NotFinite")),
+                "  if (!(%s >= %s && %s <= %s)) return %s;" % (f, flit(self.min), f, flit(self.max),
+                                                               d.status("OutOfRange")),
                 "  {",
-                "    int32_t raw = bits::round_to_i32(%s);" % quotient,
+                "    int32_t raw = %s(%s);" % (d.fn("round_to_i32"), quotient),
                 "    // Only a value within half an LSB of a range end can round outside",
                 "    // the raw interval; the nearest in-range code is the right answer.",
                 "    if (raw < %s) raw = %s;" % (cint(self.raw_min), cint(self.raw_min)),
                 "    if (raw > %s) raw = %s;" % (cint(self.raw_max), cint(self.raw_max)),
-                "    w = bits::put(w, %d, %d, static_cast<uint64_t>(static_cast<int64_t>(raw)));" % (self.start, self.len),
+                "    w = %s(w, %d, %d, %s);" % (d.fn("put"), self.start, self.len,
+                                              d.cast("uint64_t", d.cast("int64_t", "raw"))),
                 "  }",
             ]
         elif self.kind == "int":
             lo, hi = self.ctype_limits()
             conds = self.range_conds(f, lo, hi)
             if conds:
-                out.append("  if (%s) return CodecStatus::OutOfRange;" % " || ".join(conds))
-            out.append("  w = bits::put(w, %d, %d, static_cast<uint64_t>(static_cast<int64_t>(%s)));"
-                       % (self.start, self.len, f))
+                out.append("  if (%s) return %s;" % (" || ".join(conds), d.status("OutOfRange")))
+            out.append("  w = %s(w, %d, %d, %s);" % (d.fn("put"), self.start, self.len,
+                                                      d.cast("uint64_t", d.cast("int64_t", f))))
         elif self.kind == "enum":
             out += [
-                "  if (!is_valid(%s)) return CodecStatus::InvalidEnum;" % f,
-                "  w = bits::put(w, %d, %d, static_cast<uint64_t>(%s));" % (self.start, self.len, f),
+                "  if (!%s(%s)) return %s;" % (d.enum_valid(self.enum_name), f, d.status("InvalidEnum")),
+                "  w = %s(w, %d, %d, %s);" % (d.fn("put"), self.start, self.len, d.cast("uint64_t", f)),
             ]
         else:  # bool
-            out.append("  w = bits::put(w, %d, 1, %s ? 1u : 0u);" % (self.start, f))
+            out.append("  w = %s(w, %d, 1, %s ? 1u : 0u);" % (d.fn("put"), self.start, f))
         return out
 
-    def unpack_lines(self):
+    def unpack_lines(self, d):
+        """Decoding of this signal from `w` into the local `m`, in dialect `d`."""
         t = "m.%s" % self.name
-        g = self.raw_getter()
-        out = ["  {", "    const int64_t raw = static_cast<int64_t>(%s);" % g]
+        g = "%s(w, %d, %d)" % (d.fn("get_signed" if self.signed else "get_unsigned"), self.start, self.len)
         if self.kind == "bool":
-            out = ["  %s = %s != 0;" % (t, g)]
-            return out
+            return ["  %s = %s != 0;" % (t, g)]
+        out = ["  {", "    const int64_t raw = %s;" % d.cast("int64_t", g)]
         conds = self.range_conds("raw", self.bit_lo, self.bit_hi)
         if self.kind == "enum":
-            out.append("    const %s v = static_cast<%s>(raw);" % (self.enum_name, self.enum_name))
-            out.append("    if (!is_valid(v)) return CodecStatus::InvalidEnum;")
+            et = d.enum_type(self.enum_name)
+            out.append("    const %s v = %s;" % (et, d.cast(et, "raw")))
+            out.append("    if (!%s(v)) return %s;" % (d.enum_valid(self.enum_name), d.status("InvalidEnum")))
             out.append("    %s = v;" % t)
         else:
             if conds:
-                out.append("    if (%s) return CodecStatus::OutOfRange;" % " || ".join(conds))
+                out.append("    if (%s) return %s;" % (" || ".join(conds), d.status("OutOfRange")))
             if self.kind == "int":
-                out.append("    %s = static_cast<%s>(raw);" % (t, self.ctype))
+                out.append("    %s = %s;" % (t, d.cast(self.ctype, "raw")))
             else:
                 inv = self.exact_inverse()
-                expr = ("static_cast<float>(static_cast<int32_t>(raw)) / %s" % flit(inv)) if inv is not None else (
-                    "static_cast<float>(static_cast<int32_t>(raw)) * %s" % flit(self.factor))
+                as_float = d.cast("float", d.cast("int32_t", "raw"))
+                expr = ("%s / %s" % (as_float, flit(inv))) if inv is not None else (
+                    "%s * %s" % (as_float, flit(self.factor)))
                 if self.offset != 0:
                     expr += " + %s" % flit(self.offset)
                 out.append("    %s = %s;" % (t, expr))
         out.append("  }")
         return out
+
+
+# The two languages the codec is written in: the same statements, their
+# spellings. pack_lines/unpack_lines write one rule for both.
+class CppDialect:
+    def field(self, name):
+        return "m.%s" % name
+
+    def fn(self, name):
+        return "bits::" + name
+
+    def status(self, name):
+        return "CodecStatus::" + name
+
+    def cast(self, t, e):
+        return "static_cast<%s>(%s)" % (t, e)
+
+    def enum_type(self, enum_name):
+        return enum_name
+
+    def enum_valid(self, enum_name):
+        return "is_valid"
+
+
+class CDialect:
+    def field(self, name):
+        return "m->%s" % name
+
+    def fn(self, name):
+        return "cvt_can_" + name
+
+    def status(self, name):
+        return "CVT_CODEC_" + c_upper(name)
+
+    def cast(self, t, e):
+        return "(%s)%s" % (t, e)
+
+    def enum_type(self, enum_name):
+        return c_enum_type(enum_name)
+
+    def enum_valid(self, enum_name):
+        return c_enum_type(enum_name) + "_is_valid"
+
+
+# C99 pieces (docs/can.md#c-codec): the same arithmetic as the C++ methods
+# above, so both codecs give identical frames and values.
+def c_upper(name):
+    return snake(name).upper()
+
+
+def c_enum_type(enum_name):
+    return "cvt_" + snake(enum_name)
+
+
+def c_enum_const(enum_name, value):
+    return "CVT_%s_%s" % (c_upper(enum_name), c_upper(value))
+
+
+def sig_c_type(s):
+    return {"bool": "bool", "float": "float", "enum": c_enum_type(getattr(s, "enum_name", "")),
+            "int": getattr(s, "ctype", "")}[s.kind]
+
+
+def sig_c_value(s, raw=None, phys=None):
+    if s.kind == "float":
+        if phys is None:
+            phys = Decimal(raw) * s.factor + s.offset
+        return flit(phys)
+    if phys is not None:
+        raw = int(phys)
+    if s.kind == "bool":
+        return "true" if raw else "false"
+    if s.kind == "enum":
+        return c_enum_const(s.enum_name, s.values[raw])
+    return cint(raw)
 
 
 class Msg:
@@ -347,7 +426,7 @@ def generate(path):
     w = L.append
     w("// GENERATED by hil/codegen/dbc2cpp.py from hil/cvtplant.dbc -- do not edit.")
     w("// Regenerate: cmake --build <build> --target can_codegen")
-    w("// (ctest can_codegen_fresh fails when this file and the DBC disagree).")
+    w("// (ctest hil.codegen_fresh fails when this file and the DBC disagree).")
     w("// DBC sha256: %s" % digest)
     w("//")
     w("// Physical values in SI units (names carry the unit). pack() rounds to the")
@@ -433,7 +512,7 @@ def generate(path):
         w("inline CodecStatus pack(const %s& m, uint8_t (&payload)[8]) noexcept {" % m.name)
         w("  uint64_t w = 0;")
         for s in m.signals:
-            L.extend(s.pack_lines())
+            L.extend(s.pack_lines(CppDialect()))
         w("  bits::store_le64(w, payload);")
         w("  return CodecStatus::Ok;")
         w("}")
@@ -443,7 +522,7 @@ def generate(path):
         w("  const uint64_t w = bits::load_le64(payload);")
         w("  %s m;" % m.name)
         for s in m.signals:
-            L.extend(s.unpack_lines())
+            L.extend(s.unpack_lines(CppDialect()))
         w("  out = m;")
         w("  return CodecStatus::Ok;")
         w("}")
@@ -581,35 +660,395 @@ def generate(path):
     return "\n".join(L) + "\n"
 
 
+def generate_c(path):
+    """The C99 codec (docs/can.md#c-codec): header and source text."""
+    with open(path, "rb") as fh:
+        digest = hashlib.sha256(fh.read()).hexdigest()
+    msgs, enums = load(path)
+    H, C = [], []
+    h, c = H.append, C.append
+    for w in (h, c):
+        w("/* GENERATED by hil/codegen/dbc2cpp.py from hil/cvtplant.dbc -- do not edit.")
+        w(" * Regenerate: cmake --build <build> --target can_codegen")
+        w(" * (ctest hil.codegen_fresh fails when this file and the DBC disagree).")
+        w(" * DBC sha256: %s" % digest)
+        w(" *")
+        w(" * The C99 codec of the bus: the same frames and values as the C++ codec")
+        w(" * (cvtplant/can/messages.hpp), checked by ctest hil.c_codec_agreement. No heap,")
+        w(" * no libm. Physical values in SI units; pack() rounds to the nearest raw")
+        w(" * code and range-checks the physical value, unpack() checks the raw code")
+        w(" * against the exact raw image of [min|max]. docs/can.md#c-codec */")
+    h("#ifndef CVTPLANT_C_CAN_MESSAGES_H")
+    h("#define CVTPLANT_C_CAN_MESSAGES_H")
+    h("")
+    h("#include <stdbool.h>")
+    h("#include <stddef.h>")
+    h("#include <stdint.h>")
+    h("")
+    h('#include "cvtplant_c/can.h"')
+    h("")
+    h("#ifdef __cplusplus")
+    h('extern "C" {')
+    h("#endif")
+    h("")
+    h('#define CVT_CAN_DBC_SHA256 "%s"' % digest)
+    h("")
+    c('#include "cvtplant_c/can_messages.h"')
+    c("")
+    for name in sorted(enums):
+        e = enums[name]
+        et = c_enum_type(name)
+        h("typedef enum {")
+        for k, v in e.values.items():
+            h("  %s = %d," % (c_enum_const(name, v), k))
+        h("} %s;" % et)
+        h("bool %s_is_valid(%s v);" % (et, et))
+        h("const char* %s_name(%s v);" % (et, et))
+        h("")
+        c("bool %s_is_valid(%s v) {" % (et, et))
+        c("  switch (v) {")
+        for k, v in e.values.items():
+            c("    case %s:" % c_enum_const(name, v))
+        c("      return true;")
+        c("  }")
+        c("  return false;")
+        c("}")
+        c("")
+        c("const char* %s_name(%s v) {" % (et, et))
+        c("  switch (v) {")
+        for k, v in e.values.items():
+            c('    case %s: return "%s";' % (c_enum_const(name, v), v))
+        c("  }")
+        c('  return "?";')
+        c("}")
+        c("")
+    for m in msgs:
+        t = "cvt_" + m.member
+        U = "CVT_" + m.member.upper()
+        h("/* 0x%03X %s: cycle %d ms, receive timeout %d ms, E2E data ID 0x%04X. */" % (
+            m.id, m.name, m.cycle_ms, m.timeout_ms, m.data_id))
+        h("#define %s_ID 0x%03Xu" % (U, m.id))
+        h("#define %s_DLC %du" % (U, m.dlc))
+        h("#define %s_E2E_DATA_ID 0x%04Xu" % (U, m.data_id))
+        h("#define %s_E2E_MAX_DELTA_COUNTER %du" % (U, m.max_delta))
+        h("#define %s_E2E_SYNC_COUNTER_INIT %du" % (U, m.sync_init))
+        h("#define %s_CYCLE_TIME_MS %du" % (U, m.cycle_ms))
+        h("#define %s_RX_TIMEOUT_MS %du" % (U, m.timeout_ms))
+        h("#define %s_SIGNAL_COUNT %du" % (U, len(m.signals)))
+        h("typedef struct {")
+        for sg in m.signals:
+            cm = sg.comment()
+            h("  %s %s;%s" % (sig_c_type(sg), sg.name, ("  /* " + cm + " */") if cm else ""))
+        h("} %s;" % t)
+        h("extern const char* const %s_signal_names[%d];" % (t, len(m.signals)))
+        h("/* Every signal at its initial value (GenSigStartValue). */")
+        h("void %s_init(%s* m);" % (t, t))
+        h("/* Signals only: byte 0 and the low nibble of byte 1 are left 0 for E2E;")
+        h(" * nothing is written on an error. */")
+        h("cvt_codec_status %s_pack(const %s* m, uint8_t payload[8]);" % (t, t))
+        h("/* Writes *out only when every signal is valid. */")
+        h("cvt_codec_status %s_unpack(const uint8_t payload[8], %s* out);" % (t, t))
+        h("/* Pack and protect (next E2E counter); on a pack error nothing is written")
+        h(" * and the counter does not advance. */")
+        h("cvt_codec_status %s_encode(const %s* m, cvt_e2e_protector* p, cvt_can_frame* out);" % (t, t))
+        h("/* The receive pipeline of docs/can.md#rejection; *out written only when")
+        h(" * accepted. */")
+        h("cvt_rx_result %s_receive(const cvt_can_frame* f, cvt_e2e_checker* c, %s* out);" % (t, t))
+        h("void %s_protector_init(cvt_e2e_protector* p);" % t)
+        h("void %s_checker_init(cvt_e2e_checker* c);" % t)
+        h("/* From a receive timeout on (docs/can.md#timeouts): Replace and")
+        h(" * Substitute applied; Ramp signals move with _rx_timeout_ramp(). */")
+        h("void %s_on_rx_timeout(%s* m);" % (t, t))
+        h("void %s_rx_timeout_ramp(%s* m, float dt_s);" % (t, t))
+        h("")
+        c("const char* const %s_signal_names[%d] = {%s};" % (t, len(m.signals), ", ".join('"%s"' % sg.name for sg in m.signals)))
+        c("")
+        c("void %s_init(%s* m) {" % (t, t))
+        for sg in m.signals:
+            c("  m->%s = %s;" % (sg.name, sig_c_value(sg, raw=sg.init_raw)))
+        c("}")
+        c("")
+        c("cvt_codec_status %s_pack(const %s* m, uint8_t payload[8]) {" % (t, t))
+        c("  uint64_t w = 0;")
+        for sg in m.signals:
+            C.extend(sg.pack_lines(CDialect()))
+        c("  cvt_can_store_le64(w, payload);")
+        c("  return CVT_CODEC_OK;")
+        c("}")
+        c("")
+        c("cvt_codec_status %s_unpack(const uint8_t payload[8], %s* out) {" % (t, t))
+        c("  const uint64_t w = cvt_can_load_le64(payload);")
+        c("  %s m;" % t)
+        for sg in m.signals:
+            C.extend(sg.unpack_lines(CDialect()))
+        c("  *out = m;")
+        c("  return CVT_CODEC_OK;")
+        c("}")
+        c("")
+        c("cvt_codec_status %s_encode(const %s* m, cvt_e2e_protector* p, cvt_can_frame* out) {" % (t, t))
+        c("  cvt_can_frame f = {%s_ID, %s_DLC, 0, {0}};" % (U, U))
+        c("  const cvt_codec_status st = %s_pack(m, f.data);" % t)
+        c("  if (st != CVT_CODEC_OK) return st;")
+        c("  cvt_e2e_protect(p, f.data);")
+        c("  *out = f;")
+        c("  return CVT_CODEC_OK;")
+        c("}")
+        c("")
+        c("cvt_rx_result %s_receive(const cvt_can_frame* f, cvt_e2e_checker* c, %s* out) {" % (t, t))
+        c("  cvt_rx_result r = {CVT_CODEC_OK, CVT_E2E_NO_NEW_DATA};")
+        c("  if (!cvt_can_is_standard_data_frame(f)) r.codec = CVT_CODEC_NOT_DATA_FRAME;")
+        c("  else if (f->id != %s_ID) r.codec = CVT_CODEC_UNKNOWN_ID;" % U)
+        c("  else if (f->dlc != %s_DLC) r.codec = CVT_CODEC_WRONG_DLC;" % U)
+        c("  if (r.codec != CVT_CODEC_OK) return r;")
+        c("  const cvt_e2e_verdict v = cvt_e2e_evaluate(c, f->data);")
+        c("  r.e2e = v.status;")
+        c("  if (v.status != CVT_E2E_OK && v.status != CVT_E2E_SYNC && v.status != CVT_E2E_WRONG_SEQUENCE) return r;")
+        c("  %s tmp;" % t)
+        c("  r.codec = %s_unpack(f->data, &tmp);" % t)
+        c("  if (r.codec != CVT_CODEC_OK) return r;")
+        c("  cvt_e2e_commit(c, v);")
+        c("  if (v.status == CVT_E2E_OK) *out = tmp;")
+        c("  return r;")
+        c("}")
+        c("")
+        c("void %s_protector_init(cvt_e2e_protector* p) { cvt_e2e_protector_init(p, %s_E2E_DATA_ID); }" % (t, U))
+        c("")
+        c("void %s_checker_init(cvt_e2e_checker* c) {" % t)
+        c("  cvt_e2e_checker_init(c, %s_E2E_DATA_ID, %s_E2E_MAX_DELTA_COUNTER, %s_E2E_SYNC_COUNTER_INIT);" % (U, U, U))
+        c("}")
+        c("")
+        c("void %s_on_rx_timeout(%s* m) {" % (t, t))
+        acted = False
+        for sg in m.signals:
+            if sg.timeout_action == "Replace":
+                c("  m->%s = %s; /* Replace: init value */" % (sg.name, sig_c_value(sg, raw=sg.init_raw)))
+                acted = True
+            elif sg.timeout_action == "Substitute":
+                c("  m->%s = %s; /* Substitute */" % (sg.name, sig_c_value(sg, phys=sg.substitute)))
+                acted = True
+        if not acted:
+            c("  (void)m;")
+        c("}")
+        c("")
+        ramps = [sg for sg in m.signals if sg.timeout_action == "Ramp"]
+        c("void %s_rx_timeout_ramp(%s* m, float dt_s) {" % (t, t))
+        if not ramps:
+            c("  (void)m;")
+            c("  (void)dt_s;")
+        for sg in ramps:
+            c("  m->%s = cvt_can_ramp_toward(m->%s, %s, %s * dt_s); /* Ramp, %s %s/s */" % (
+                sg.name, sg.name, sig_c_value(sg, phys=sg.substitute), flit(sg.rate),
+                format(sg.rate.normalize(), "f"), sg.unit or "1"))
+        c("}")
+        c("")
+    # Message table, generic access, dispatch and the bank of receivers.
+    h("typedef enum {")
+    for m in msgs:
+        h("  CVT_MSG_%s," % m.member.upper())
+    h("} cvt_can_message_id;")
+    h("#define CVT_CAN_MESSAGE_COUNT %du" % len(msgs))
+    h("")
+    h("typedef struct {")
+    h("  uint32_t can_id;")
+    h("  uint8_t dlc;")
+    h("  uint16_t e2e_data_id;")
+    h("  uint8_t e2e_max_delta_counter;")
+    h("  uint8_t e2e_sync_counter_init;")
+    h("  uint16_t cycle_time_ms;")
+    h("  uint16_t rx_timeout_ms;")
+    h("  uint8_t signal_count;")
+    h("  const char* name;")
+    h("  const char* const* signal_names;")
+    h("} cvt_can_message_info;")
+    h("extern const cvt_can_message_info cvt_can_messages[CVT_CAN_MESSAGE_COUNT];")
+    h("/* Index into cvt_can_messages, or -1 for an ID this bus does not define. */")
+    h("int cvt_can_find_message(uint32_t can_id);")
+    h("")
+    h("typedef struct {")
+    h("  cvt_can_message_id which;")
+    h("  union {")
+    for m in msgs:
+        h("    cvt_%s %s;" % (m.member, m.member))
+    h("  } u;")
+    h("} cvt_can_any;")
+    h("/* Shape checks and unpack, no E2E (for logs and tools); *out written")
+    h(" * only on success. */")
+    h("cvt_codec_status cvt_can_decode_any(const cvt_can_frame* f, cvt_can_any* out);")
+    h("/* Pack the selected message (signals only, no E2E). */")
+    h("cvt_codec_status cvt_can_any_pack(const cvt_can_any* a, uint8_t payload[8]);")
+    h("/* The selected message's signals as doubles, in DBC order (exact: every")
+    h(" * signal is a float, an integer of at most 32 bits, a bool or an enum). */")
+    h("void cvt_can_any_get(const cvt_can_any* a, double* out);")
+    h("/* Sets the selected message's signals from doubles, in DBC order: floats")
+    h(" * rounded to float, integers and enum codes converted, bools != 0. */")
+    h("void cvt_can_any_set(cvt_can_any* a, const double* in);")
+    h("/* The selected message's _init, _on_rx_timeout and _rx_timeout_ramp. */")
+    h("void cvt_can_any_init(cvt_can_any* a);")
+    h("void cvt_can_any_on_rx_timeout(cvt_can_any* a);")
+    h("void cvt_can_any_rx_timeout_ramp(cvt_can_any* a, float dt_s);")
+    h("")
+    h("/* One E2E receiver per message: the receive pipeline dispatched on the ID. */")
+    h("typedef struct {")
+    h("  cvt_e2e_checker checkers[CVT_CAN_MESSAGE_COUNT];")
+    h("} cvt_can_rx_bank;")
+    h("void cvt_can_rx_bank_init(cvt_can_rx_bank* b);")
+    h("cvt_rx_result cvt_can_rx_bank_receive(cvt_can_rx_bank* b, const cvt_can_frame* f, cvt_can_any* out);")
+    h("/* The deadline of `id` expired (docs/can.md#timeouts). */")
+    h("void cvt_can_rx_bank_require_resync(cvt_can_rx_bank* b, cvt_can_message_id id);")
+    h("/* A new run: forget the sender of `id`. */")
+    h("void cvt_can_rx_bank_reset(cvt_can_rx_bank* b, cvt_can_message_id id);")
+    h("")
+    c("const cvt_can_message_info cvt_can_messages[CVT_CAN_MESSAGE_COUNT] = {")
+    for m in msgs:
+        U = "CVT_" + m.member.upper()
+        c('    {%s_ID, %s_DLC, %s_E2E_DATA_ID, %s_E2E_MAX_DELTA_COUNTER, %s_E2E_SYNC_COUNTER_INIT, %s_CYCLE_TIME_MS,' % ((U,) * 6))
+        c('     %s_RX_TIMEOUT_MS, %s_SIGNAL_COUNT, "%s", cvt_%s_signal_names},' % (U, U, m.name, m.member))
+    c("};")
+    c("")
+    c("int cvt_can_find_message(uint32_t can_id) {")
+    c("  switch (can_id) {")
+    for i, m in enumerate(msgs):
+        c("    case CVT_%s_ID: return %d;" % (m.member.upper(), i))
+    c("  }")
+    c("  return -1;")
+    c("}")
+    c("")
+    c("cvt_codec_status cvt_can_decode_any(const cvt_can_frame* f, cvt_can_any* out) {")
+    c("  if (!cvt_can_is_standard_data_frame(f)) return CVT_CODEC_NOT_DATA_FRAME;")
+    c("  switch (f->id) {")
+    for m in msgs:
+        U = "CVT_" + m.member.upper()
+        c("    case %s_ID: {" % U)
+        c("      if (f->dlc != %s_DLC) return CVT_CODEC_WRONG_DLC;" % U)
+        c("      cvt_%s v;" % m.member)
+        c("      const cvt_codec_status st = cvt_%s_unpack(f->data, &v);" % m.member)
+        c("      if (st != CVT_CODEC_OK) return st;")
+        c("      out->which = CVT_MSG_%s;" % m.member.upper())
+        c("      out->u.%s = v;" % m.member)
+        c("      return st;")
+        c("    }")
+    c("  }")
+    c("  return CVT_CODEC_UNKNOWN_ID;")
+    c("}")
+    c("")
+    c("cvt_codec_status cvt_can_any_pack(const cvt_can_any* a, uint8_t payload[8]) {")
+    c("  switch (a->which) {")
+    for m in msgs:
+        c("    case CVT_MSG_%s: return cvt_%s_pack(&a->u.%s, payload);" % (m.member.upper(), m.member, m.member))
+    c("  }")
+    c("  return CVT_CODEC_UNKNOWN_ID;")
+    c("}")
+    c("")
+    c("void cvt_can_any_get(const cvt_can_any* a, double* out) {")
+    c("  switch (a->which) {")
+    for m in msgs:
+        c("    case CVT_MSG_%s:" % m.member.upper())
+        for i, sg in enumerate(m.signals):
+            c("      out[%d] = (double)a->u.%s.%s;" % (i, m.member, sg.name))
+        c("      break;")
+    c("  }")
+    c("}")
+    c("")
+    c("void cvt_can_any_set(cvt_can_any* a, const double* in) {")
+    c("  switch (a->which) {")
+    for m in msgs:
+        c("    case CVT_MSG_%s:" % m.member.upper())
+        for i, sg in enumerate(m.signals):
+            ty = sig_c_type(sg)
+            if sg.kind == "bool":
+                c("      a->u.%s.%s = in[%d] != 0.0;" % (m.member, sg.name, i))
+            elif sg.kind == "enum":
+                c("      a->u.%s.%s = (%s)(int)in[%d];" % (m.member, sg.name, ty, i))
+            else:
+                c("      a->u.%s.%s = (%s)in[%d];" % (m.member, sg.name, ty, i))
+        c("      break;")
+    c("  }")
+    c("}")
+    c("")
+    for fn, args, call in (("init", "", ""), ("on_rx_timeout", "", ""), ("rx_timeout_ramp", ", float dt_s", ", dt_s")):
+        c("void cvt_can_any_%s(cvt_can_any* a%s) {" % (fn, args))
+        c("  switch (a->which) {")
+        for m in msgs:
+            c("    case CVT_MSG_%s: cvt_%s_%s(&a->u.%s%s); break;" % (m.member.upper(), m.member, fn, m.member, call))
+        c("  }")
+        c("}")
+        c("")
+    c("void cvt_can_rx_bank_init(cvt_can_rx_bank* b) {")
+    for i, m in enumerate(msgs):
+        c("  cvt_%s_checker_init(&b->checkers[%d]);" % (m.member, i))
+    c("}")
+    c("")
+    c("cvt_rx_result cvt_can_rx_bank_receive(cvt_can_rx_bank* b, const cvt_can_frame* f, cvt_can_any* out) {")
+    c("  cvt_rx_result r = {CVT_CODEC_NOT_DATA_FRAME, CVT_E2E_NO_NEW_DATA};")
+    c("  if (!cvt_can_is_standard_data_frame(f)) return r;")
+    c("  r.codec = CVT_CODEC_UNKNOWN_ID;")
+    c("  switch (f->id) {")
+    for i, m in enumerate(msgs):
+        c("    case CVT_%s_ID:" % m.member.upper())
+        c("      r = cvt_%s_receive(f, &b->checkers[%d], &out->u.%s);" % (m.member, i, m.member))
+        c("      if (cvt_rx_accepted(r)) out->which = CVT_MSG_%s;" % m.member.upper())
+        c("      break;")
+    c("  }")
+    c("  return r;")
+    c("}")
+    c("")
+    c("void cvt_can_rx_bank_require_resync(cvt_can_rx_bank* b, cvt_can_message_id id) {")
+    c("  cvt_e2e_require_resync(&b->checkers[id]);")
+    c("}")
+    c("")
+    c("void cvt_can_rx_bank_reset(cvt_can_rx_bank* b, cvt_can_message_id id) { cvt_e2e_reset(&b->checkers[id]); }")
+    h("#ifdef __cplusplus")
+    h("}")
+    h("#endif")
+    h("")
+    h("#endif /* CVTPLANT_C_CAN_MESSAGES_H */")
+    return "\n".join(H) + "\n", "\n".join(C) + "\n"
+
+
+def check_or_write(text, out, check):
+    """Writes `text` to `out`, or compares it with `check`: 0 same, 1 stale."""
+    if out:
+        with open(out, "w", newline="\n") as fh:
+            fh.write(text)
+        return 0
+    try:
+        with open(check) as fh:
+            have = fh.read()
+    except OSError as e:
+        print("dbc2cpp: cannot read %s: %s" % (check, e), file=sys.stderr)
+        return 1
+    if have == text:
+        print("dbc2cpp: %s is up to date" % check)
+        return 0
+    sys.stdout.writelines(difflib.unified_diff(have.splitlines(True), text.splitlines(True), check, "generated"))
+    print("dbc2cpp: %s is stale; regenerate with --out" % check, file=sys.stderr)
+    return 1
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--dbc", required=True)
     g = ap.add_mutually_exclusive_group(required=True)
-    g.add_argument("--out", help="write the header here")
-    g.add_argument("--check", help="compare with this committed header; exit 1 on difference")
+    g.add_argument("--out", help="write the C++ header here")
+    g.add_argument("--check", help="compare with this committed C++ header; exit 1 on difference")
+    ap.add_argument("--c-header", help="also the C99 codec's header (written with --out, compared with --check)")
+    ap.add_argument("--c-source", help="also the C99 codec's source (with --c-header)")
     a = ap.parse_args(argv)
+    if bool(a.c_header) != bool(a.c_source):
+        print("dbc2cpp: --c-header and --c-source go together", file=sys.stderr)
+        return 2
     try:
         text = generate(a.dbc)
+        c_text = generate_c(a.dbc) if a.c_header else None
     except DbcError as e:
         print("dbc2cpp: %s: %s" % (a.dbc, e), file=sys.stderr)
         return 2
-    if a.out:
-        with open(a.out, "w", newline="\n") as fh:
-            fh.write(text)
-        return 0
-    try:
-        with open(a.check) as fh:
-            have = fh.read()
-    except OSError as e:
-        print("dbc2cpp: cannot read %s: %s" % (a.check, e), file=sys.stderr)
-        return 1
-    if have == text:
-        print("dbc2cpp: %s is up to date with %s" % (a.check, a.dbc))
-        return 0
-    sys.stdout.writelines(difflib.unified_diff(
-        have.splitlines(True), text.splitlines(True), a.check, "generated from " + a.dbc))
-    print("dbc2cpp: %s is stale; regenerate with --out" % a.check, file=sys.stderr)
-    return 1
+    rc = check_or_write(text, a.out, a.check)
+    if c_text is not None:
+        write = a.out is not None
+        rc |= check_or_write(c_text[0], a.c_header if write else None, None if write else a.c_header)
+        rc |= check_or_write(c_text[1], a.c_source if write else None, None if write else a.c_source)
+    return rc
 
 
 if __name__ == "__main__":

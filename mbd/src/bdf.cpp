@@ -18,8 +18,8 @@ namespace {
 
 class Bdf final : public Integrator {
  public:
-  Bdf(const ChainModel& m, double t0, const double* y0, double rtol, long long step_cap)
-      : m_(m), rtol_(rtol), cap_(step_cap), t_(t0) {
+  Bdf(const ChainModel& m, double t0, const double* y0, double rtol, long long step_cap, bool stop_at_outputs)
+      : m_(m), rtol_(rtol), cap_(step_cap), t_(t0), stop_at_outputs_(stop_at_outputs) {
     try {
       create(y0);
     } catch (...) {
@@ -34,9 +34,10 @@ class Bdf final : public Integrator {
     if (tout > t_) {
       long nst = 0;
       CVodeGetNumSteps(mem_, &nst);
-      const long long left = cap_ - nst;
+      const long long left = cap_ - (before_.steps + nst);
       if (left <= 0) throw RunFailure(t_, "step cap of " + std::to_string(cap_) + " steps reached (raise --max-steps)");
       CVodeSetMaxNumSteps(mem_, static_cast<long>(std::min<long long>(left, 1000000000LL)));
+      if (stop_at_outputs_) CVodeSetStopTime(mem_, tout);
       double tret = t_;
       const int flag = CVode(mem_, tout, y_, &tret, CV_NORMAL);
       if (flag < 0) fail(flag, tret);
@@ -45,7 +46,24 @@ class Bdf final : public Integrator {
     std::copy(N_VGetArrayPointer(y_), N_VGetArrayPointer(y_) + m_.size(), y);
   }
 
+  void set_step_cap(long long cap) override { cap_ = cap; }
+
+  void reinit(double t, const double* y) override {
+    std::copy(y, y + m_.size(), N_VGetArrayPointer(y_));
+    check(CVodeReInit(mem_, t, y_), "CVodeReInit");
+    before_ += counters_now();
+    t_ = t;
+  }
+
   SolverCounters counters() const override {
+    SolverCounters c = counters_now();
+    c += before_;
+    return c;
+  }
+
+ private:
+  // CVODE's counters since the last (re)initialisation.
+  SolverCounters counters_now() const {
     const auto get = [this](int (*fn)(void*, long*)) {
       long v = 0;
       fn(mem_, &v);
@@ -63,7 +81,6 @@ class Bdf final : public Integrator {
     return c;
   }
 
- private:
   void create(const double* y0) {
     const double t0 = t_;
     check(SUNContext_Create(nullptr, &ctx_), "SUNContext_Create");
@@ -174,6 +191,8 @@ class Bdf final : public Integrator {
   double rtol_;
   long long cap_;
   double t_;
+  bool stop_at_outputs_;
+  SolverCounters before_;  // work before the last reinit (counters() and the cap run on)
   SUNContext ctx_ = nullptr;
   N_Vector y_ = nullptr;
   void* mem_ = nullptr;
@@ -186,8 +205,8 @@ class Bdf final : public Integrator {
 }  // namespace
 
 std::unique_ptr<Integrator> make_bdf(const ChainModel& m, double t0, const double* y0, double rtol,
-                                     long long step_cap) {
-  return std::make_unique<Bdf>(m, t0, y0, rtol, step_cap);
+                                     long long step_cap, bool stop_at_outputs) {
+  return std::make_unique<Bdf>(m, t0, y0, rtol, step_cap, stop_at_outputs);
 }
 
 }  // namespace cvt::mbd::detail

@@ -45,4 +45,16 @@ Vec2 DriveGeometry::pitch_point(double s) const {
   return {c.x + (d.x - c.x) * s / strand_m, c.y + (d.y - c.y) * s / strand_m};
 }
 
+double driven_radius_for(double r1_m, double pitch_line_m, double c_m) {
+  // The pitch line grows with r2 (r2 theta2 and the strands' tilt): bisection.
+  double lo = 1e-6, hi = c_m - r1_m - 1e-9;
+  if (!(seed::chain_length_m(r1_m, lo, c_m) < pitch_line_m && seed::chain_length_m(r1_m, hi, c_m) > pitch_line_m))
+    throw std::invalid_argument("geometry: no driven radius fits that chain at that driver radius");
+  for (int it = 0; it < 200; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (seed::chain_length_m(r1_m, mid, c_m) < pitch_line_m ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
 }  // namespace cvt::mbd

@@ -36,13 +36,6 @@ double TimeProfile::at(double t_s) const {
   return lo->second + w * (hi->second - lo->second);
 }
 
-MbdParams seed_case(int friction_case) {
-  if (friction_case != 1 && friction_case != 2) throw std::invalid_argument("seed case: 1 or 2");
-  MbdParams p;
-  p.friction = friction_case == 1 ? friction_presets::table2_case1<double>() : friction_presets::table2_case2<double>();
-  return p;
-}
-
 ChainModel::ChainModel(const MbdParams& p) : p_(p), geo_(p.r1_m, p.r2_m, p.center_distance_m) {
   require(p.links >= 3, "at least 3 links");
   require(p.link_mass_kg > 0 && p.link_length_m > 0 && p.J1_kgm2 > 0 && p.J2_kgm2 > 0, "masses, inertias, L > 0");
@@ -76,6 +69,10 @@ ChainModel::ChainModel(const MbdParams& p) : p_(p), geo_(p.r1_m, p.r2_m, p.cente
                 "clamping forces > 0 at increasing times");
     require(p.sheave_mass_kg > 0 && p.sheave_damping_Ns_m >= 0, "sheave mass > 0, damping >= 0");
     require(p.sheave_stop_m > 0 && p.sheave_stop_N_m >= 0, "sheave stops > 0");
+    require(p.start_r1_m == 0 || (std::fabs(p.start_r1_m - p.r1_m) * 2.0 * std::tan(p.beta0_rad) < p.sheave_stop_m),
+            "start radius within the driver's stops");
+  } else {
+    require(p.start_r1_m == 0, "a start radius needs clamped sheaves");
   }
   n_links_ = p.links;
   sheave_base_ = 6 * n_links_ + 4;
@@ -91,6 +88,7 @@ ChainModel::ChainModel(const MbdParams& p) : p_(p), geo_(p.r1_m, p.r2_m, p.cente
   chain_.half_length_m = 0.5 * p.link_length_m;
   chain_.k_N_m = p.joint_stiffness_N_m;
   chain_.p_Ns_m = p.joint_damping_Ns_m;
+  chain_.c_rot_Nms = p.joint_rot_damping_Nms_rad;
   chain_.Kb_N_m = p.bolt_stiffness_N_m;
   chain_.friction = p.friction;
   settle_chain_ = chain_;
@@ -130,6 +128,13 @@ double ChainModel::clamp_force(int j, double t_s) const {
   return p_.clamp2_N.empty() ? thrust_ratio_ * p_.clamp1_N.at(t_s) : p_.clamp2_N.at(t_s);
 }
 
+void ChainModel::hold_inputs(double clamp1_N, double clamp2_N, double tau_in_Nm, double tau_load_Nm) {
+  p_.clamp1_N = TimeProfile::constant(clamp1_N);
+  p_.clamp2_N = TimeProfile::constant(clamp2_N);
+  p_.tau_in_Nm = TimeProfile::constant(tau_in_Nm);
+  p_.tau_load_Nm = TimeProfile::constant(tau_load_Nm);
+}
+
 double ChainModel::tolerance_scale(int i) const {
   // docs/mbd.md#tolerances
   if (i < 6 * n_links_) {
@@ -137,7 +142,7 @@ double ChainModel::tolerance_scale(int i) const {
       case 0: case 1: return 0.1;    // m: 0.1 um at rtol 1e-6, against mm of bolt compression
       case 2: return 1.0;            // rad, absolute (link angles grow without bound)
       case 3: case 4: return 1.0;    // m/s
-      default: return 10.0;          // rad/s
+      default: return p_.tolerance_link_rate_rad_s;  // rad/s
     }
   }
   if (i < sheave_base_) return 1.0;  // pulley angle [rad], speed [rad/s]
@@ -163,20 +168,30 @@ double ChainModel::tolerance_energy_J() const {
 std::vector<double> ChainModel::initial_state() const {
   // docs/mbd.md#start-up: front pins (bolts) evenly along the pitch line, the
   // rear pin of each link on the pitch line a chord L behind its front pin.
+  // Started at another driver radius: along that ratio's line of the same
+  // length, the sheaves opened so the unloaded bolts touch there.
   std::vector<double> y(static_cast<std::size_t>(n_), 0.0);
-  const double spacing = geo_.pitch_line_m / n_links_;
+  const bool moved = p_.start_r1_m > 0;
+  const double r1s = moved ? p_.start_r1_m : geo_.r_m[0];
+  const double r2s = moved ? driven_radius_for(r1s, geo_.pitch_line_m, geo_.center_distance_m) : geo_.r_m[1];
+  const DriveGeometry line(r1s, r2s, geo_.center_distance_m);
+  if (moved) {
+    y[static_cast<std::size_t>(sheave_opening(0))] = 2.0 * tan(p_.beta0_rad) * (geo_.r_m[0] - r1s);
+    y[static_cast<std::size_t>(sheave_opening(1))] = 2.0 * tan(p_.beta0_rad) * (geo_.r_m[1] - r2s);
+  }
+  const double spacing = line.pitch_line_m / n_links_;
   const double L = p_.link_length_m;
   for (int i = 0; i < n_links_; ++i) {
     const double s_front = i * spacing;
-    const Vec2 f = geo_.pitch_point(s_front);
+    const Vec2 f = line.pitch_point(s_front);
     double lo = s_front - 2.0 * L, hi = s_front;  // chord grows as the rear point moves back
     for (int it = 0; it < 200; ++it) {
       const double mid = 0.5 * (lo + hi);
-      const Vec2 r = geo_.pitch_point(mid);
+      const Vec2 r = line.pitch_point(mid);
       const double d = std::hypot(f.x - r.x, f.y - r.y);
       (d > L ? lo : hi) = mid;
     }
-    const Vec2 r = geo_.pitch_point(0.5 * (lo + hi));
+    const Vec2 r = line.pitch_point(0.5 * (lo + hi));
     double* q = &y[static_cast<std::size_t>(6 * i)];
     q[0] = 0.5 * (f.x + r.x);
     q[1] = 0.5 * (f.y + r.y);
@@ -323,6 +338,11 @@ bool ChainModel::rhs(double t_s, const double* y, double* dydt) const {
   if (clamped()) {
     // docs/mbd.md#clamped-sheaves: m_s s'' = F_ax - F_clamp(t) - c_s s'
     for (int j = 0; j < 2; ++j) {
+      if (j == 0 && driver_sheave_locked()) {
+        dydt[sheave_opening(0)] = 0.0;
+        dydt[sheave_rate(0)] = 0.0;
+        continue;
+      }
       const double rate = y[sheave_rate(j)];
       const double clamp = clamp_force(j, t_s);
       dydt[sheave_opening(j)] = rate;
@@ -481,7 +501,7 @@ void ChainModel::jacobian(double t_s, const double* y, double* values) const {
         if (pulley_free) at(pulley_speed(j), col) += cf.pulley_moment_Nm.d[v] * inv_J;
         else if (!settling) at(power_row, col) += sign_j * omega_j * cf.pulley_moment_Nm.d[v];
         at(ledger(2), col) += cf.dissipation_W.d[v];
-        if (clamped() && v != 6 && !(v >= 3 && v < 6))
+        if (clamped() && v != 6 && !(v >= 3 && v < 6) && !(j == 0 && driver_sheave_locked()))
           at(sheave_rate(j), col) += cf.bolt_force_N.d[v] / p_.sheave_mass_kg;
       }
     }
@@ -495,7 +515,9 @@ void ChainModel::jacobian(double t_s, const double* y, double* values) const {
       const double torque = applied_torque(j, dj, moment[j]);
       at(power_row, pulley_speed(j)) += pulley_free ? torque + omega_j * dj.slope : torque;
     }
-    if (clamped()) {
+    if (clamped() && j == 0 && driver_sheave_locked()) {
+      at(sheave_opening(0), sheave_rate(0)) = 0.0;  // held: both rates zero whatever the state
+    } else if (clamped()) {
       const double rate = y[sheave_rate(j)];
       at(sheave_opening(j), sheave_rate(j)) = 1.0;
       at(sheave_rate(j), sheave_rate(j)) = -p_.sheave_damping_Ns_m / p_.sheave_mass_kg;
@@ -532,7 +554,7 @@ Sample ChainModel::sample(double t_s, const double* y) const {
   double e_el = 0;
   link_trig(y);
   std::vector<int> in_contact(static_cast<std::size_t>(n_links_), -1);
-  double slip_sum[2] = {0, 0};
+  double slip_sum[2] = {0, 0}, radius_sum[2] = {0, 0};
   double slip_lo[2] = {INFINITY, INFINITY}, slip_hi[2] = {-INFINITY, -INFINITY};
   for (int i = 0; i < n_links_; ++i) {
     const double* q = y + 6 * i;
@@ -545,6 +567,7 @@ Sample ChainModel::sample(double t_s, const double* y) const {
       out.chain_torque_Nm[j] += cf.pulley_moment_Nm;
       out.wrap_links[j] += 1;
       slip_sum[j] -= cf.slip_t_m_s;  // surface speed minus bolt speed
+      radius_sum[j] += cf.radius_m;
       slip_lo[j] = std::min(slip_lo[j], -cf.slip_t_m_s);
       slip_hi[j] = std::max(slip_hi[j], -cf.slip_t_m_s);
       e_el += cf.potential_J;
@@ -553,6 +576,7 @@ Sample ChainModel::sample(double t_s, const double* y) const {
   for (int j = 0; j < 2; ++j) {
     const bool any = out.wrap_links[j] > 0;
     out.slip_m_s[j] = any ? slip_sum[j] / out.wrap_links[j] : kNaN;
+    out.radius_m[j] = any ? radius_sum[j] / out.wrap_links[j] : kNaN;
     out.slip_min_m_s[j] = any ? slip_lo[j] : kNaN;
     out.slip_max_m_s[j] = any ? slip_hi[j] : kNaN;
   }

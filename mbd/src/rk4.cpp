@@ -39,7 +39,7 @@ class Rk4 final : public Integrator {
     // Steps are counted from t0 and the time is k dt, so no drift builds up.
     const long long target = std::llround((tout - t0_) / dt_);
     while (steps_ < target) {
-      if (steps_ >= cap_)
+      if (steps_before_ + steps_ >= cap_)
         throw RunFailure(t0_ + steps_ * dt_, "step cap of " + std::to_string(cap_) + " steps reached (raise --max-steps)");
       step_rk4(sys_, x_, dt_);
       ++steps_;
@@ -48,10 +48,21 @@ class Rk4 final : public Integrator {
     for (Eigen::Index i = 0; i + 1 < x_.size(); ++i) y[i] = x_(i);
   }
 
+  void set_step_cap(long long cap) override { cap_ = cap; }
+
+  void reinit(double t, const double* y) override {
+    // Steps count on from the new start (the cap spans both).
+    steps_before_ += steps_;
+    steps_ = 0;
+    t0_ = t;
+    for (Eigen::Index i = 0; i + 1 < x_.size(); ++i) x_(i) = y[i];
+    x_(x_.size() - 1) = t;
+  }
+
   SolverCounters counters() const override {
     SolverCounters c;
-    c.steps = steps_;
-    c.rhs_evals = 4 * steps_;
+    c.steps = steps_before_ + steps_;
+    c.rhs_evals = 4 * c.steps;
     return c;
   }
 
@@ -60,7 +71,7 @@ class Rk4 final : public Integrator {
   Eigen::VectorXd x_;
   double t0_, dt_;
   long long cap_;
-  long long steps_ = 0;
+  long long steps_ = 0, steps_before_ = 0;
 };
 
 }  // namespace

@@ -78,6 +78,21 @@ void start_at_speed(ChainModel& model, std::vector<double>& y, const RunOptions&
 
 }  // namespace
 
+void detail::settle_and_start(ChainModel& model, std::vector<double>& y, const RunOptions& opt, RunStats& stats) {
+  const MbdParams& params = model.params();
+  // docs/mbd.md#start-up: the same settle for every method and tolerance, so
+  // all runs of a case start from the same released state.
+  if (params.settle_s > 0) {
+    model.set_phase(ChainModel::Phase::settle);
+    // The settle is fixed work (a few thousand steps), outside the user's cap.
+    auto settle = detail::make_bdf(model, model.settle_start_s(), y.data(), opt.settle_rtol, kSettleStepCap);
+    settle->advance_to(model.spinup_start_s(), y.data());
+    const std::string bad = model.state_problem(y.data());
+    if (!bad.empty()) throw RunFailure(model.spinup_start_s(), "settling: " + bad);
+  }
+  if (params.start.active) start_at_speed(model, y, opt, stats);
+}
+
 HoldSteadiness hold_steadiness(const std::vector<Sample>& hold, double window_s) {
   if (hold.empty() || !(window_s > 0) || hold.front().t_s > -window_s + 1e-9 || hold.back().t_s < -1e-9)
     throw std::invalid_argument("hold samples do not cover the window");
@@ -131,19 +146,10 @@ RunStats simulate(const MbdParams& params, const RunOptions& opt, const SampleSi
   const auto t_start = clock::now();
   const std::clock_t cpu_start = std::clock();
   const auto cpu_seconds = [&] { return static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC; };
-  // docs/mbd.md#start-up: the same settle for every method and tolerance, so
-  // all runs of a case start from the same released state.
-  if (params.settle_s > 0) {
-    model.set_phase(ChainModel::Phase::settle);
-    // The settle is fixed work (a few thousand steps), outside the user's cap.
-    auto settle = detail::make_bdf(model, model.settle_start_s(), y.data(), opt.settle_rtol, kSettleStepCap);
-    settle->advance_to(model.spinup_start_s(), y.data());
-    const std::string bad = model.state_problem(y.data());
-    if (!bad.empty()) throw RunFailure(model.spinup_start_s(), "settling: " + bad);
-  }
-  if (params.start.active) start_at_speed(model, y, opt, stats);
+  detail::settle_and_start(model, y, opt, stats);
   const auto t_released = clock::now();
   stats.settle_wall_s = std::chrono::duration<double>(t_released - t_start).count();
+  stats.settle_cpu_s = cpu_seconds();
   model.set_phase(ChainModel::Phase::run);
   if (params.hold1.active) y[static_cast<std::size_t>(model.pulley_speed(0))] = params.hold1.omega_rad_s;
   if (params.hold2.active) y[static_cast<std::size_t>(model.pulley_speed(1))] = params.hold2.omega_rad_s;

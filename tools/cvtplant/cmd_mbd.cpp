@@ -99,9 +99,15 @@ nlohmann::json jnum(double v) { return std::isfinite(v) ? nlohmann::json(v) : nl
 }  // namespace
 
 void add_model_options(CLI::App* sub, ModelOptions& o) {
-  sub->add_option("--t-end", o.t_end_s, "Simulated time after the release [s], (0, 3600]")->capture_default_str();
-  sub->add_option("--sheaves", o.sheaves, "fixed (the seed's pulleys) | clamped (movable sheave per pulley, axial force given)")
+  sub->add_option("--set", o.set,
+                  "Parameter set: seed (Table 1, with --case) | production (the production-like chain CVT, "
+                  "docs/mbd-production.md)")
       ->capture_default_str()
+      ->check(CLI::IsMember({"seed", "production"}));
+  sub->add_option("--t-end", o.t_end_s, "Simulated time after the release [s], (0, 3600]")->capture_default_str();
+  sub->add_option("--sheaves", o.sheaves,
+                  "fixed (the seed's pulleys) | clamped (movable sheave per pulley, axial force given); default: "
+                  "fixed for the seed set, clamped for production")
       ->check(CLI::IsMember({"fixed", "clamped"}));
   o.clamp1_opt = sub->add_option("--clamp-N", o.clamp1,
                                  "Driver clamping force for --sheaves clamped: F, or a profile t:F,t:F,... [s:N], F in [100, 1e5]");
@@ -112,7 +118,8 @@ void add_model_options(CLI::App* sub, ModelOptions& o) {
       ->check(CLI::IsMember({"bdf", "rk4"}));
   o.dt_opt = sub->add_option("--dt", o.dt_s, "RK4 step [s], [1e-8, 1e-4] (default 1e-6)");
   o.rtol_opt = sub->add_option("--rtol", o.rtol, "BDF relative tolerance, [1e-11, 1e-3] (default 5e-7)");
-  sub->add_option("--links", o.links, "Number of links N, [36, 53]; sets the pretension")->capture_default_str();
+  o.links_opt = sub->add_option("--links", o.links, "Number of links N of the seed set, [36, 53]; sets the pretension")
+                    ->capture_default_str();
   sub->add_option("--sample", o.sample_s, "Output interval [s], [1e-6, t-end]")->capture_default_str();
   sub->add_option("--tau-in", o.tau_in,
                   "Driver torque from the release: T, or a profile t:T,t:T,... [s:N m], T in [-1000, 1000]")
@@ -133,6 +140,8 @@ void validate(const ModelOptions& o) {
   require_range(o.t_end_s, 1e-6, 3600.0, "--t-end", "s");
   require_range(o.sample_s, 1e-6, o.t_end_s, "--sample", "s (and at most --t-end)");
   require_range(o.links, 36, 53, "--links", "");
+  if (o.production() && o.links_opt != nullptr && o.links_opt->count() > 0)
+    throw UsageError{"--links applies to --set seed (the production set has 53 links)"};
   parse_torque(o.tau_in, "--tau-in");
   parse_torque(o.tau_load, "--tau-load");
   if (o.road_opt != nullptr && o.road_opt->count() > 0) parse_road_load(o.road_load);
@@ -158,7 +167,7 @@ void validate(const ModelOptions& o) {
                      std::to_string(o.max_rows) + " (raise --max-rows or --sample)"};
   const bool given1 = o.clamp1_opt != nullptr && o.clamp1_opt->count() > 0;
   const bool given2 = o.clamp2_opt != nullptr && o.clamp2_opt->count() > 0;
-  if (o.sheaves == "clamped") {
+  if (o.sheave_mode() == "clamped") {
     if (!given1) throw UsageError{"--sheaves clamped needs --clamp-N"};
     parse_clamp(o.clamp1, "--clamp-N");
     if (given2) parse_clamp(o.clamp2, "--clamp2-N");
@@ -168,13 +177,20 @@ void validate(const ModelOptions& o) {
 }
 
 cvt::mbd::MbdParams params_for(const ModelOptions& o, int friction_case) {
-  cvt::mbd::MbdParams p = cvt::mbd::seed_case(friction_case);
-  p.links = o.links;
+  cvt::mbd::MbdParams p = o.production() ? cvt::mbd::production_set() : cvt::mbd::seed_case(friction_case);
+  if (!o.production()) p.links = o.links;
   p.tau_in_Nm = parse_torque(o.tau_in, "--tau-in");
   p.tau_load_Nm = parse_torque(o.tau_load, "--tau-load");
   if (!o.road_load.empty()) p.road = parse_road_load(o.road_load);
-  if (!o.omega0.empty()) p.start = parse_omega0(o.omega0);
-  if (o.sheaves == "clamped") {
+  if (!o.omega0.empty()) {
+    // The set's own spin-up and hold (the production set: 0.2 s each).
+    const cvt::mbd::StartAtSpeed w = parse_omega0(o.omega0);
+    p.start.active = true;
+    p.start.omega1_rad_s = w.omega1_rad_s;
+    p.start.omega2_rad_s = w.omega2_rad_s;
+  }
+  p.sheaves = SheaveMode::fixed;
+  if (o.sheave_mode() == "clamped") {
     p.sheaves = SheaveMode::clamped;
     p.clamp1_N = parse_clamp(o.clamp1, "--clamp-N");
     if (!o.clamp2.empty()) p.clamp2_N = parse_clamp(o.clamp2, "--clamp2-N");
@@ -191,6 +207,9 @@ cvt::mbd::RunOptions run_options_for(const ModelOptions& o) {
   r.sample_s = o.sample_s;
   r.max_steps = o.max_steps;
   r.ledger_tol = o.ledger_tol;
+  // docs/mbd.md#start-up: the production set's stiff chain settles and
+  // spins up at 1e-6 (1e-8 costs it about 6x the steps); the seed's at 1e-8.
+  if (o.production()) r.settle_rtol = 1e-6;
   return r;
 }
 
@@ -319,13 +338,14 @@ nlohmann::json summary_json(const ModelOptions& o, int friction_case, const RunO
   j["subcommand"] = "mbd";
   j["status"] = r.failed ? "failed" : "ok";
   if (r.failed) j["failure"] = {{"t_s", r.fail_t_s}, {"quantity", r.fail_quantity}};
-  j["case"] = friction_case;
-  j["friction"] = friction_case == 1 ? "case1" : "case2";
+  j["set"] = o.set;
+  j["case"] = o.production() ? nlohmann::json(nullptr) : nlohmann::json(friction_case);
+  j["friction"] = o.production() ? "production" : friction_case == 1 ? "case1" : "case2";
   j["method"] = o.method;
   j["rtol"] = o.method == "bdf" ? nlohmann::json(o.rtol) : nlohmann::json(nullptr);
   j["dt_s"] = o.method == "rk4" ? nlohmann::json(o.dt_s) : nlohmann::json(nullptr);
-  j["sheaves"] = o.sheaves;
-  j["links"] = o.links;
+  j["sheaves"] = o.sheave_mode();
+  j["links"] = o.production() ? cvt::mbd::production_set().links : o.links;
   j["t_end_s"] = o.t_end_s;
   j["t_reached_s"] = s.last.t_s;
   j["sample_s"] = o.sample_s;
@@ -333,6 +353,7 @@ nlohmann::json summary_json(const ModelOptions& o, int friction_case, const RunO
   j["wall_s"] = st.wall_s;
   j["cpu_s"] = st.cpu_s;
   j["settle_wall_s"] = st.settle_wall_s;
+  j["settle_cpu_s"] = st.settle_cpu_s;
   j["steps"] = st.steps;
   j["rhs_evals"] = st.rhs_evals;
   j["jac_evals"] = st.jac_evals;
@@ -375,8 +396,10 @@ nlohmann::json summary_json(const ModelOptions& o, int friction_case, const RunO
 void print_text(const ModelOptions& o, int c, const RunOutcome& r) {
   const auto& st = r.stats;
   const auto& s = r.summary;
-  std::printf("Multibody chain CVT, seed %s, %d links, %s sheaves, %s\n", case_label(c).c_str(), o.links,
-              o.sheaves.c_str(), method_label(o).c_str());
+  std::printf("Multibody chain CVT, %s, %d links, %s sheaves, %s\n",
+              o.production() ? "production-like set" : ("seed " + case_label(c)).c_str(),
+              o.production() ? cvt::mbd::production_set().links : o.links, o.sheave_mode().c_str(),
+              method_label(o).c_str());
   std::printf("  t = %g s: omega1 %.3f rad/s, omega2 %.3f rad/s, ratio %.4f (mean over the run %.4f)\n", s.last.t_s,
               s.omega_end_rad_s[0], s.omega_end_rad_s[1], s.ratio_end, s.ratio_mean);
   std::printf("  driver axial force: mean %.1f N, last %.3g s: mean %.1f N, peak to peak %.1f N\n",
@@ -419,13 +442,15 @@ Action register_mbd(CLI::App& app) {
   return [opt]() -> int {
     if (opt->figures->parsed()) return run_figures(opt->fig);
     const ModelOptions& m = opt->model;
-    if (opt->friction_case == 0) throw UsageError{"--case 1|2 is required"};
+    if (m.production() && opt->friction_case != 0)
+      throw UsageError{"--case applies to --set seed (the production set has its own friction)"};
+    if (!m.production() && opt->friction_case == 0) throw UsageError{"--case 1|2 is required"};
     validate(m);
     double every = opt->links_every_s;
     if (!opt->links_csv.empty()) {
       if (every == 0) every = m.sample_s;
       require_range(every, m.sample_s, m.t_end_s, "--links-every", "s (from --sample to --t-end)");
-      const double rows = (std::floor(m.t_end_s / every) + 1.0) * m.links;
+      const double rows = (std::floor(m.t_end_s / every) + 1.0) * (m.production() ? 53 : m.links);
       if (rows > static_cast<double>(m.max_rows))
         throw UsageError{"--links-csv: " + num(rows) + " rows exceed --max-rows (raise it or --links-every)"};
     } else if (opt->links_every_s != 0) {
@@ -436,7 +461,7 @@ Action register_mbd(CLI::App& app) {
     std::FILE* csv = opt->csv.empty() ? nullptr : open_output(opt->csv);
     std::FILE* links = opt->links_csv.empty() ? nullptr : open_output(opt->links_csv);
     const RunOutcome r = run_case(m, opt->friction_case, csv, links, every, -1,
-                                  "mbd " + case_label(opt->friction_case));
+                                  m.production() ? std::string("mbd production") : "mbd " + case_label(opt->friction_case));
     close_output(csv);
     close_output(links);
     if (opt->json) print_json(summary_json(m, opt->friction_case, r));

@@ -16,8 +16,9 @@ namespace cvtcli::mbdcli {
 
 // Options that choose the model and the numerics (both subcommands).
 struct ModelOptions {
+  std::string set = "seed";  // parameter set (docs/mbd-production.md): seed | production
   double t_end_s = 10.0;
-  std::string sheaves = "fixed";
+  std::string sheaves;  // empty: the set's own (seed: fixed, production: clamped)
   std::string clamp1, clamp2;  // "F" or "t:F,t:F,..." [s:N]
   std::string method = "bdf";
   double dt_s = 1e-6;
@@ -37,6 +38,9 @@ struct ModelOptions {
   CLI::Option* clamp2_opt = nullptr;
   CLI::Option* road_opt = nullptr;
   CLI::Option* omega0_opt = nullptr;
+  CLI::Option* links_opt = nullptr;
+  bool production() const { return set == "production"; }
+  std::string sheave_mode() const { return !sheaves.empty() ? sheaves : production() ? "clamped" : "fixed"; }
 };
 
 void add_model_options(CLI::App* sub, ModelOptions& o);

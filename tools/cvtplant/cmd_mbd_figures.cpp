@@ -115,7 +115,7 @@ std::string chain_picture(const std::string& d, const ModelOptions& m, int c, co
   auto s = open_text_file(d + "/" + tag + ".gp");
   s << png_terminal(1300, 560) << "set output '" << png << "'\n"
     << "set title \"Chain on the pulleys at t = " << num(r.picture_t_s) << " s, seed " << case_label(c) << ", "
-    << m.links << " links, " << m.sheaves << " sheaves, " << method_label(m)
+    << m.links << " links, " << m.sheave_mode() << " sheaves, " << method_label(m)
     << "\\nlinks drawn from rear to front pin (dot: the bolt at the front pin), thin lines: the joints\"\n"
     << "set size ratio -1\nset grid\nset xlabel 'x [m]'\nset ylabel 'y [m]'\nset key outside right\n"
     << "set xrange [" << x_lo << ":" << x_hi << "]\nset yrange [" << y_lo << ":" << y_hi << "]\n"
@@ -147,6 +147,7 @@ void add_figure_options(CLI::App* sub, FigureOptions& o) {
 }
 
 int run_figures(const FigureOptions& o) {
+  if (o.model.production()) throw UsageError{"mbd figures draws the seed's Figs. 13-14: --set seed only"};
   validate(o.model);
   if (o.picture_t_s != -1 && !(o.picture_t_s >= 0 && o.picture_t_s <= o.model.t_end_s))
     throw UsageError{"--picture-t: " + num(o.picture_t_s) + " is outside [0, --t-end]"};

@@ -12,12 +12,14 @@
 #include "commands.hpp"
 #include "io_util.hpp"
 #include "options.hpp"
-#include "cvtplant/plant/rom_param_keys.hpp"
+#include "cvtplant/plant/rom_features.hpp"
 #include "cvtplant/scene/builtin_scenes.hpp"
 
 namespace cvtcli {
 
 namespace {
+
+constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 
 // The features' names are the plant's (plant/rom_features.hpp).
 using FeatureName = cvt::RomFeatureName;
@@ -188,19 +190,61 @@ class Reader {
     f.lambda_s_m = number(t, pre, "lambda_s_m", f.lambda_s_m);
   }
 
-  // The [params] table: every RomParams field, as the features declare their
-  // keys (plant/rom_param_keys.hpp; beta0 in degrees).
+  // The [params] table: every RomParams field (beta0 in degrees).
   void params(const toml::table& t, cvt::RomParams& p) {
     const std::string pre = "params.";
-    std::set<std::string> known;
-    cvt::for_each_rom_param_key([&](const cvt::RomParamKey& k) { known.insert(k.key); });
-    check_known(t, pre, known);
-    cvt::for_each_rom_param_key([&](const cvt::RomParamKey& k) {
-      if (k.number != nullptr)
-        p.*k.number = number(t, pre, k.key, p.*k.number / k.si_per_file) * k.si_per_file;
-      else
-        p.*k.flag = boolean(t, pre, k.key, p.*k.flag);
-    });
+    check_known(t, pre,
+                {"r1_m", "r2_m", "beta0_deg", "center_distance_m", "J1_kgm2", "J2_kgm2", "lump_mass_kg", "k1_N_m",
+                 "c1_Ns_m", "k2_N_m", "c2_Ns_m", "entry_load_share", "normal_load_factor", "hold_driver_speed", "hold_driven_speed", "stick_speed_m_s",
+                 "speed_limit_rad_s", "actuator_tau_s", "clamp_max_N", "sheave_mass_kg", "sheave_damping_Ns_m", "K_ax_N_m", "road_T0_Nm",
+                 "road_cv_Nms_rad", "road_ca_Nms2_rad2", "road_w_eps_rad_s", "zeta1_rad", "zeta2_rad", "pitch_m",
+                 "ripple_gain", "driven_clamp_N", "radial_mass_kg", "radial_damping_Ns_m", "radial_travel_m", "radial_stop_N_m",
+                 "wrap_tension_share", "chain_mass_kg_m", "chain_stiffness_N", "creep_gain", "stop_tension_N",
+                 "stop_tension_share", "centrifugal_gain", "wrap_excess_share", "fixed_sheaves"});
+    p.r1_m = number(t, pre, "r1_m", p.r1_m);
+    p.r2_m = number(t, pre, "r2_m", p.r2_m);
+    p.beta0_rad = number(t, pre, "beta0_deg", p.beta0_rad / kDegToRad) * kDegToRad;
+    p.center_distance_m = number(t, pre, "center_distance_m", p.center_distance_m);
+    p.J1_kgm2 = number(t, pre, "J1_kgm2", p.J1_kgm2);
+    p.J2_kgm2 = number(t, pre, "J2_kgm2", p.J2_kgm2);
+    p.lump_mass_kg = number(t, pre, "lump_mass_kg", p.lump_mass_kg);
+    p.k1_N_m = number(t, pre, "k1_N_m", p.k1_N_m);
+    p.c1_Ns_m = number(t, pre, "c1_Ns_m", p.c1_Ns_m);
+    p.k2_N_m = number(t, pre, "k2_N_m", p.k2_N_m);
+    p.c2_Ns_m = number(t, pre, "c2_Ns_m", p.c2_Ns_m);
+    p.entry_load_share = number(t, pre, "entry_load_share", p.entry_load_share);
+    p.normal_load_factor = number(t, pre, "normal_load_factor", p.normal_load_factor);
+    p.hold_driver_speed = boolean(t, pre, "hold_driver_speed", p.hold_driver_speed);
+    p.hold_driven_speed = boolean(t, pre, "hold_driven_speed", p.hold_driven_speed);
+    p.stick_speed_m_s = number(t, pre, "stick_speed_m_s", p.stick_speed_m_s);
+    p.speed_limit_rad_s = number(t, pre, "speed_limit_rad_s", p.speed_limit_rad_s);
+    p.actuator_tau_s = number(t, pre, "actuator_tau_s", p.actuator_tau_s);
+    p.clamp_max_N = number(t, pre, "clamp_max_N", p.clamp_max_N);
+    p.sheave_mass_kg = number(t, pre, "sheave_mass_kg", p.sheave_mass_kg);
+    p.sheave_damping_Ns_m = number(t, pre, "sheave_damping_Ns_m", p.sheave_damping_Ns_m);
+    p.K_ax_N_m = number(t, pre, "K_ax_N_m", p.K_ax_N_m);
+    p.road_T0_Nm = number(t, pre, "road_T0_Nm", p.road_T0_Nm);
+    p.road_cv_Nms_rad = number(t, pre, "road_cv_Nms_rad", p.road_cv_Nms_rad);
+    p.road_ca_Nms2_rad2 = number(t, pre, "road_ca_Nms2_rad2", p.road_ca_Nms2_rad2);
+    p.road_w_eps_rad_s = number(t, pre, "road_w_eps_rad_s", p.road_w_eps_rad_s);
+    p.zeta1_rad = number(t, pre, "zeta1_rad", p.zeta1_rad);
+    p.zeta2_rad = number(t, pre, "zeta2_rad", p.zeta2_rad);
+    p.pitch_m = number(t, pre, "pitch_m", p.pitch_m);
+    p.ripple_gain = number(t, pre, "ripple_gain", p.ripple_gain);
+    p.driven_clamp_N = number(t, pre, "driven_clamp_N", p.driven_clamp_N);
+    p.radial_mass_kg = number(t, pre, "radial_mass_kg", p.radial_mass_kg);
+    p.radial_damping_Ns_m = number(t, pre, "radial_damping_Ns_m", p.radial_damping_Ns_m);
+    p.radial_travel_m = number(t, pre, "radial_travel_m", p.radial_travel_m);
+    p.radial_stop_N_m = number(t, pre, "radial_stop_N_m", p.radial_stop_N_m);
+    p.wrap_tension_share = number(t, pre, "wrap_tension_share", p.wrap_tension_share);
+    p.chain_mass_kg_m = number(t, pre, "chain_mass_kg_m", p.chain_mass_kg_m);
+    p.chain_stiffness_N = number(t, pre, "chain_stiffness_N", p.chain_stiffness_N);
+    p.creep_gain = number(t, pre, "creep_gain", p.creep_gain);
+    p.stop_tension_N = number(t, pre, "stop_tension_N", p.stop_tension_N);
+    p.stop_tension_share = number(t, pre, "stop_tension_share", p.stop_tension_share);
+    p.centrifugal_gain = number(t, pre, "centrifugal_gain", p.centrifugal_gain);
+    p.wrap_excess_share = number(t, pre, "wrap_excess_share", p.wrap_excess_share);
+    p.fixed_sheaves = boolean(t, pre, "fixed_sheaves", p.fixed_sheaves);
   }
 
   // A parameter file (`cvtplant calibrate --out`): [params] only, applied to s.

@@ -2,8 +2,10 @@
 // (docs/sil.md#controller-schedule): one control step per plant output group
 // (ControlSchedule: as soon as a fresh group is complete, at most one per
 // 5 ms, and at least one per 15 ms), or with --schedule fixed every 10 ms on
-// its own clock. For the bridge's real-time mode; in lock-step, cvtplant-sil
-// runs the same ControllerNode in step with the harness.
+// its own clock. For the bridge's real-time mode. With --lockstep it is the
+// external controller of a lock-step harness (cvtplant-sil run --controller
+// external, docs/sil.md#external-lockstep): one control step per HarnessDemand.
+// Whenever a harness sends HarnessDemand, the demand and set-point are its.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -19,7 +21,7 @@ namespace {
 
 const char kUsage[] =
     "usage: cvtplant-controller [--iface NAME] [--demand-Nm T] [--duration-s S] [--schedule group|fixed]\n"
-    "                           [--ratio-steps T:R[,T:R...]]\n"
+    "                           [--ratio-steps T:R[,T:R...]] [--lockstep]\n"
     "The example clamping-force controller on SocketCAN until S seconds passed\n"
     "(0 = until SIGINT/SIGTERM). --schedule group (default): one control step per\n"
     "fresh plant output group, 5 ms apart at least, 15 ms at most; fixed: every\n"
@@ -29,6 +31,10 @@ const char kUsage[] =
     "T seconds after the start (up to 8 steps, T increasing, R in [0.5, 3]); the JSON\n"
     "then reports the largest |ratio - set-point| once a set-point has held 1 s\n"
     "(set-points beyond the end stops, outside 0.8908..2.6498, are not judged).\n"
+    "Once a harness sends HarnessDemand, its driver demand and set-point replace\n"
+    "--demand-Nm and --ratio-steps. --lockstep: one control step per HarnessDemand\n"
+    "(the external controller of cvtplant-sil run --controller external), until\n"
+    "--duration-s of host time, SIGINT/SIGTERM.\n"
     "Exit 0, 1 (interface), 2 (usage).\n";
 
 [[noreturn]] void bad_usage(const char* msg, const char* v) {
@@ -86,13 +92,17 @@ RatioSteps parse_ratio_steps(const char* v) {
 int main(int argc, char** argv) {
   const char* iface = "vcan0";
   double demand_Nm = 50, duration_s = 0;
-  bool fixed = false;
+  bool fixed = false, lockstep = false;
   RatioSteps ratio_steps;
   for (int i = 1; i < argc; ++i) {
     const char* a = argv[i];
     if (!std::strcmp(a, "-h") || !std::strcmp(a, "--help")) {
       std::fputs(kUsage, stdout);
       return 0;
+    }
+    if (!std::strcmp(a, "--lockstep")) {
+      lockstep = true;
+      continue;
     }
     const bool known = !std::strcmp(a, "--iface") || !std::strcmp(a, "--demand-Nm") ||
                        !std::strcmp(a, "--duration-s") || !std::strcmp(a, "--schedule") ||
@@ -125,6 +135,16 @@ int main(int argc, char** argv) {
   double max_err = 0, max_slip = 0;
   while (!cvt::hil::stop_requested() && (duration_s == 0 || clock.now_ns() < end)) {
     std::int64_t now = clock.now_ns();
+    if (lockstep) {
+      // The harness's period: every frame it needs came before its
+      // HarnessDemand (docs/sil.md#external-lockstep).
+      node.poll(10000000);
+      node.take_new_run();
+      if (!node.demand_pending()) continue;
+      node.control_step_demand();
+      ++periods;
+      continue;
+    }
     if (fixed) {
       node.poll(0);
     } else {
@@ -136,7 +156,11 @@ int main(int argc, char** argv) {
       }
       node.poll(0);  // whatever else is queued: the newest group wins
     }
-    if (ratio_steps.n > 0) {
+    node.take_new_run();
+    if (node.has_demand()) {
+      // A harness plays the scenario: its demand and set-point.
+      node.control_step_demand();
+    } else if (ratio_steps.n > 0) {
       double held = 0;
       const double target = ratio_steps.at(static_cast<double>(now - t0) * 1e-9, held);
       // The group this step uses (fresh) against the set-point it had.

@@ -1,4 +1,4 @@
-// Must NOT link (ctest no_heap_rejects_delete_virtual): never calls new or
+// Must NOT link (ctest tests.no_heap_rejects_delete_virtual): never calls new or
 // delete, but a virtual destructor makes GCC emit a deleting destructor that
 // references sized operator delete -- a real trap for firmware interfaces.
 struct Base {

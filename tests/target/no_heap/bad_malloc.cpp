@@ -1,4 +1,4 @@
-// Must NOT link (ctest no_heap_rejects_malloc): calls malloc.
+// Must NOT link (ctest tests.no_heap_rejects_malloc): calls malloc.
 #include <cstdlib>
 
 int main() {

@@ -1,4 +1,4 @@
-// Must NOT link (ctest no_heap_rejects_printf): newlib's printf allocates
+// Must NOT link (ctest tests.no_heap_rejects_printf): newlib's printf allocates
 // its stdio buffers with malloc, which is why the port has its own console.
 #include <cstdio>
 

@@ -1,4 +1,4 @@
-// Must NOT link (ctest no_heap_rejects_throw): throws (this file alone is
+// Must NOT link (ctest tests.no_heap_rejects_throw): throws (this file alone is
 // compiled with -fexceptions, as a library built without our flags would be).
 volatile int g_trigger = 0;
 

@@ -1,6 +1,6 @@
 // Clamping-force control law of the example controller (docs/sil.md#controller).
 // Heap-free, float only, no libm call: it is the part of the firmware that
-// would be cross-compiled for the ECU (ctest sil_controller_cortex_m4 compiles
+// would be cross-compiled for the ECU (ctest hil.sil_controller_cortex_m4 compiles
 // it for Cortex-M4F and refuses heap, exception and RTTI references).
 //
 // The belt can carry tau_cap = 2 mu0 F_ax r1 / cos(beta) (docs/rom.md#contact).

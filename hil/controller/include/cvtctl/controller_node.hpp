@@ -6,7 +6,9 @@
 // PlantForces with one sample_tag), runs ClampLaw once per control period and
 // sends CtrlCmd. A period without a fresh group (incomplete, mixed tags,
 // E2E-rejected, or the sample it already used, e.g. a group the plant sent
-// again) runs the law with plant_data_valid = false.
+// again) runs the law with plant_data_valid = false. Driven by a harness on
+// the bus (docs/sil.md#external-lockstep), it takes the driver demand and the
+// set-point from HarnessDemand and echoes its demand_tag in its commands.
 #pragma once
 
 #include <cstdint>
@@ -40,6 +42,22 @@ class ControllerNode {
     ratio_law_.reset();
     have_speeds_ = have_ratio_ = have_forces_ = have_status_ = have_shift_ = false;
     last_used_tag_ = -1;
+    demand_pending_ = false;
+  }
+
+  // The harness reset the plant (a PlantStatus in Ready at sim time 0, the
+  // answer to SimCtrl Reset, docs/sil.md#external-lockstep): a new run, so
+  // the laws start again from rest. Cleared by the call.
+  bool take_new_run() {
+    const bool r = new_run_;
+    new_run_ = false;
+    if (r) {
+      law_.reset();
+      ratio_law_.reset();
+      // A new harness may start its HarnessDemand counter anywhere.
+      rx_.reset(cvt::can::MessageId::HarnessDemand);
+    }
+    return r;
   }
 
   // The ECU itself restarts: as restart(), and its CtrlCmd counter starts
@@ -109,8 +127,23 @@ class ControllerNode {
     return st != cvt::port::CanIoStatus::Ok ? st : st2;
   }
 
+  // A HarnessDemand arrived since the last control step: the harness's
+  // period has started (docs/sil.md#external-lockstep).
+  bool demand_pending() const { return demand_pending_; }
+  // A harness has sent HarnessDemand: the demand and set-point are its.
+  bool has_demand() const { return have_demand_; }
+  const cvt::can::HarnessDemand& demand() const { return demand_; }
+  // One period on the harness's demand: the ratio law when it asks for ratio
+  // control, else the clamping law.
+  cvt::port::CanIoStatus control_step_demand() {
+    demand_pending_ = false;
+    if (demand_.ratio_control) return control_step_ratio(demand_.driver_demand_Nm, demand_.ratio_target);
+    return control_step(demand_.driver_demand_Nm);
+  }
+
   cvt::port::CanIoStatus send_shift_command() {
     cvt::can::CtrlShiftCmd cmd;
+    cmd.demand_tag = demand_.demand_tag;
     cmd.driven_clamp_force_cmd_N = clamp_f(last_ratio_out_.driven_clamp_cmd_N, 0.0f, 60000.0f);
     cmd.ratio_target = clamp_f(last_ratio_target_, 0.0f, 6.5f);
     return send_message(cmd, tx_shift_);
@@ -120,6 +153,7 @@ class ControllerNode {
   // sends faster than its cycle; the SIL flood scenario uses it).
   cvt::port::CanIoStatus send_command() {
     cvt::can::CtrlCmd cmd;
+    cmd.demand_tag = demand_.demand_tag;
     cmd.clamp_force_cmd_N = last_out_.clamp_force_cmd_N;
     cmd.driver_torque_req_Nm = clamp_f(last_out_.driver_torque_req_Nm, -600.0f, 600.0f);
     return send_message(cmd, tx_);
@@ -173,7 +207,8 @@ class ControllerNode {
       case cvt::can::PlantForces::kId:
       case cvt::can::PlantShift::kId:
       case cvt::can::PlantStatus::kId:
-      case cvt::can::PlantDiag::kId: break;
+      case cvt::can::PlantDiag::kId:
+      case cvt::can::HarnessDemand::kId: break;
       default: return;
     }
     const cvt::can::RxResult r = rx_.receive(f, any_);
@@ -194,7 +229,15 @@ class ControllerNode {
       case cvt::can::MessageId::PlantRatio: ratio_ = any_.plant_ratio; have_ratio_ = true; break;
       case cvt::can::MessageId::PlantForces: forces_ = any_.plant_forces; have_forces_ = true; break;
       case cvt::can::MessageId::PlantShift: shift_ = any_.plant_shift; have_shift_ = true; break;
-      case cvt::can::MessageId::PlantStatus: status_ = any_.plant_status; have_status_ = true; break;
+      case cvt::can::MessageId::PlantStatus:
+        status_ = any_.plant_status;
+        have_status_ = true;
+        if (status_.plant_mode == cvt::can::PlantMode::Ready && status_.sim_time_us == 0) new_run_ = true;
+        break;
+      case cvt::can::MessageId::HarnessDemand:
+        demand_ = any_.harness_demand;
+        demand_pending_ = have_demand_ = true;
+        break;
       default: break;
     }
   }
@@ -216,6 +259,8 @@ class ControllerNode {
   cvt::can::PlantStatus status_{};
   bool have_speeds_ = false, have_ratio_ = false, have_forces_ = false, have_status_ = false;
   int last_used_tag_ = -1;
+  cvt::can::HarnessDemand demand_{};
+  bool demand_pending_ = false, have_demand_ = false, new_run_ = false;
   ClampLawOutputs last_out_{};
   ControllerCounters counters_{};
 };

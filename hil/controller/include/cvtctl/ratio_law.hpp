@@ -3,7 +3,7 @@
 // balance of the driver (primary) and driven (secondary) clamping forces,
 // with the clamping level kept at a safety factor over the transmitted torque
 // and raised on detected slip. Heap-free, float only, no libm call (ctest
-// sil_controller_cortex_m4 compiles it for Cortex-M4F).
+// hil.sil_controller_cortex_m4 compiles it for Cortex-M4F).
 //
 // Physics (docs/sil.md#ratio-control derives it from docs/rom.md#wedging):
 //   the chain is in radial equilibrium when F1 / F2 = kappa(ratio), the ratio

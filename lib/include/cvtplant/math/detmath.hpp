@@ -62,7 +62,7 @@ inline double asin_setup(double s) {
 // Measured maximum error (docs/numerics.md#detmath has the sweeps and the
 // commands). float/double: in ulp of the exact result (ulp(y) = 2^(floor(log2|y|) - p + 1),
 // subnormals: the smallest subnormal). Fixed: in LSB (2^-F), absolute.
-// tests/unit/test_detmath.cpp asserts each of these.
+// lib/tests/test_detmath.cpp asserts each of these.
 template <class T>
 struct max_error;
 

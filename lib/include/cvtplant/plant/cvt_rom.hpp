@@ -378,6 +378,7 @@ class CvtRom {
     o.tau_load_Nm = applied_load(x, l.r2);
     o.stick1 = abs(o.v_rel1_m_s) < core_.stick_speed;
     o.stick2 = abs(o.v_rel2_m_s) < core_.stick_speed;
+    radial_.outputs(x, o);
     tension_.outputs(l, o);
     return o;
   }

@@ -97,25 +97,6 @@ struct RomParams {
   bool fixed_sheaves = false;                   // the driver sheave never leaves its stop: the clamp input is unused
 };
 
-// A set-up value as a scene file names it under [params]
-// (docs/rom.md#scene-files): each feature's file lists its own
-// (plant/feature/*.hpp), rom_param_keys.hpp gathers the lists.
-struct RomParamKey {
-  const char* key;               // the key under [params]
-  double RomParams::*number;     // the value, or nullptr for a flag
-  bool RomParams::*flag;         // the flag, or nullptr for a value
-  double si_per_file;            // file value x si_per_file = the SI value (1 but for beta0_deg)
-  const char* unit;              // the file's unit ("1": dimensionless)
-  const char* what;
-};
-constexpr RomParamKey rom_param(const char* key, double RomParams::*v, const char* unit, const char* what,
-                                double si_per_file = 1.0) {
-  return RomParamKey{key, v, nullptr, si_per_file, unit, what};
-}
-constexpr RomParamKey rom_flag(const char* key, bool RomParams::*v, const char* what) {
-  return RomParamKey{key, nullptr, v, 1.0, "1", what};
-}
-
 // The fastest driver whose link passing an integrator step of `step_s`
 // resolves with 8 steps per link, |w1| h <= 2 alpha / 8 with alpha =
 // asin(L / (2 r1)) (docs/rom.md#polygon) [rad/s]. Up to it ROS2 keeps the

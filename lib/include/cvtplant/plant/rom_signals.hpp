@@ -22,6 +22,10 @@ inline constexpr std::uint32_t energy = 1u << 3;    // ledger and residual
 inline constexpr std::uint32_t states = 1u << 4;    // raw state vector (rom_state_name)
 inline constexpr std::uint32_t tension = 1u << 5;   // T_t, T_s, T_c, creep strain, sheave on its stop (feature tension)
 inline constexpr std::uint32_t all = torques | friction | ratios | energy | states | tension;
+// The wedging plant's driven clamping, radial friction and ratio end stops:
+// read by the FMU (docs/fmu.md#variables); no scene log writes them, so the
+// CSV's columns stay as they are.
+inline constexpr std::uint32_t radial = 1u << 6;
 }  // namespace rom_log
 
 enum class RomSignal : std::uint8_t {
@@ -31,6 +35,7 @@ enum class RomSignal : std::uint8_t {
   speed_ratio, geometric_ratio, radius1, radius2,
   energy_stored, work_input, work_actuator, work_load, work_friction, work_damping, energy_residual,
   tension_tight, tension_slack, tension_centrifugal, creep_strain, sheave_on_stop,
+  driven_clamp_force, radial_friction1, radial_friction2, stop_underdrive, stop_overdrive,
   count
 };
 
@@ -93,6 +98,16 @@ inline constexpr RomSignalInfo kRomSignals[] = {
      "strain difference across the driver wrap that makes the creep"},
     {RomSignal::sheave_on_stop, "sheave_on_stop", "1", rom_log::tension, RomSignalKind::flag,
      "driver sheave on its stop or fixed (1)"},
+    {RomSignal::driven_clamp_force, "F_ax2", "N", rom_log::radial, RomSignalKind::real,
+     "driven clamping force F_ax2 as the driven actuator applies it"},
+    {RomSignal::radial_friction1, "Fr1", "N", rom_log::radial, RomSignalKind::real,
+     "radial friction along the flank on the entry lump (seed Eq. 7)"},
+    {RomSignal::radial_friction2, "Fr2", "N", rom_log::radial, RomSignalKind::real,
+     "radial friction along the flank on the exit lump (seed Eq. 7)"},
+    {RomSignal::stop_underdrive, "stop_underdrive", "1", rom_log::radial, RomSignalKind::flag,
+     "chain pressed into the ratio end stop at the driver's smallest radius (1)"},
+    {RomSignal::stop_overdrive, "stop_overdrive", "1", rom_log::radial, RomSignalKind::flag,
+     "chain pressed into the ratio end stop at the driver's largest radius (1)"},
 };
 inline constexpr int kRomSignalCount = static_cast<int>(sizeof(kRomSignals) / sizeof(kRomSignals[0]));
 static_assert(kRomSignalCount == static_cast<int>(RomSignal::count), "one row per RomSignal");
@@ -158,6 +173,11 @@ double rom_signal(const RomOutputs<T>& out, const EnergyLedger<A>& e, RomSignal 
     case RomSignal::tension_centrifugal: return to_double(o.centrifugal_tension_N);
     case RomSignal::creep_strain: return to_double(o.creep_strain);
     case RomSignal::sheave_on_stop: return flag(o.sheave_on_stop);
+    case RomSignal::driven_clamp_force: return to_double(o.driven_clamp_force_N);
+    case RomSignal::radial_friction1: return to_double(o.radial_friction1_N);
+    case RomSignal::radial_friction2: return to_double(o.radial_friction2_N);
+    case RomSignal::stop_underdrive: return flag(o.stop_underdrive);
+    case RomSignal::stop_overdrive: return flag(o.stop_overdrive);
     case RomSignal::count: break;
   }
   return 0.0;

@@ -40,6 +40,29 @@ inline constexpr const char* rom_fault_name(RomFault f) {
   return "?";
 }
 
+// What a fault means and what the simulator did (docs/rom.md#watchdog), one
+// line for messages (the FMU's log, docs/fmu.md#faults).
+inline constexpr const char* rom_fault_description(RomFault f) {
+  switch (f) {
+    case RomFault::none: return "no fault";
+    case RomFault::input_non_finite: return "an input was NaN or infinite; the frame was not integrated";
+    case RomFault::state_non_finite: return "a substep produced NaN or infinity; the state was rolled back to the frame start";
+    case RomFault::state_saturated: return "a fixed-point state hit the rail of the Q range; rolled back";
+    case RomFault::radius_out_of_range:
+      return "the chain went more than twice the radial travel from its set-up radius (the end stop could not hold it); rolled back";
+    case RomFault::energy_growth:
+      return "the energy ledger's residual exceeded 5 % of the flows plus 1 J (unexplained energy growth); rolled back";
+    case RomFault::input_saturated: return "a fixed-point input was at the rail of the Q range (it was clipped); the frame was not integrated";
+    case RomFault::speed_out_of_range: return "a pulley was faster than speed_limit_rad_s (outside the model); rolled back";
+    case RomFault::step_unresolved:
+      return "links passed the driver faster than the step resolves with 8 steps per link; rolled back";
+    case RomFault::scene_features: return "the simulator's features are not the scene's; nothing ran";
+    case RomFault::tension_out_of_range:
+      return "the chain's centrifugal tension left the fixed-point range; rolled back";
+  }
+  return "?";
+}
+
 // x - x is +0 for every finite x and NaN for NaN and +-inf, and NaN stays NaN
 // through a sum: the sum of x_i - x_i over a vector is 0 exactly when every
 // x_i is finite. One comparison for the whole vector instead of two per

@@ -4,7 +4,7 @@
 //
 //   value = raw * 2^-FracBits,   raw in [INT32_MIN, INT32_MAX]
 //
-// Rules in one place (each is tested in tests/unit/test_fixed.cpp):
+// Rules in one place (each is tested in lib/tests/test_fixed.cpp):
 //   - every operation saturates to [lowest(), max()] instead of wrapping;
 //   - conversions, *, / round to nearest, ties away from zero;
 //   - x / 0 gives max() for x > 0, lowest() for x < 0, and 0 for 0 / 0;

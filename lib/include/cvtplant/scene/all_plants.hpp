@@ -58,6 +58,12 @@ struct AllRomPlants {
   static constexpr bool contains(std::uint32_t features) { return all_plants_detail::Masks<T>::contains(features); }
   // Defined in lib/src/all_plants.cpp.
   static IRomSimulator<T>* build(std::uint32_t features, const RomParams& p, const RomSimConfig& c, void* storage);
+  // RomPlantSet::visit over every mask: compiles f for each of them in the
+  // caller (a copy or a byte image of the simulator, never its step).
+  template <class Sim, class Fn>
+  static bool visit(Sim& sim, Fn&& f) {
+    return all_plants_detail::Masks<T>::visit(sim, static_cast<Fn&&>(f));
+  }
 };
 
 extern template struct AllRomPlants<double>;

@@ -1,7 +1,7 @@
 #pragma once
 // The built-in scenes (docs/rom.md#built-in-scenes): constexpr data, usable
 // from firmware without the heap. Parameter choices are justified in
-// docs/rom.md; the tests in tests/unit/test_rom_scenes.cpp run every one.
+// docs/rom.md; the tests in lib/tests/test_rom_scenes.cpp run every one.
 #include <cstring>
 
 #include "cvtplant/scene/calibrated_params.hpp"

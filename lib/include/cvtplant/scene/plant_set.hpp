@@ -71,6 +71,29 @@ struct RomPlantSetRt {
            ...);
     return sim;
   }
+
+  // Calls f(plant) with `sim`, a plant build() made, as its concrete
+  // ErasedRomSimulator<T, F, Runtime> (F = sim.features() without the
+  // run-time bits): what copies a whole
+  // simulator, its state, cached contact, ledger, actuators, fault and frame
+  // count, for a rollback that continues bit-identically (the FMU's state,
+  // fmu/). False, without calling f, if the set has no plant of its features.
+  template <class Sim, class Fn>
+  static bool visit(Sim& sim, Fn&& f) {
+    static_assert(std::is_same<std::remove_const_t<Sim>, IRomSimulator<T>>::value, "a plant of this set");
+    const std::uint32_t compiled = sim.features() & ~Runtime;
+    return ((compiled == Masks ? (f(concrete<Masks>(sim)), true) : false) || ...);
+  }
+
+ private:
+  template <std::uint32_t F>
+  static ErasedRomSimulator<T, F, Runtime>& concrete(IRomSimulator<T>& sim) {
+    return static_cast<ErasedRomSimulator<T, F, Runtime>&>(sim);
+  }
+  template <std::uint32_t F>
+  static const ErasedRomSimulator<T, F, Runtime>& concrete(const IRomSimulator<T>& sim) {
+    return static_cast<const ErasedRomSimulator<T, F, Runtime>&>(sim);
+  }
 };
 
 // A set of plants whose every feature is compiled in, as firmware ships them

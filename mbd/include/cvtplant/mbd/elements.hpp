@@ -64,6 +64,7 @@ Dual<double, N> friction_per_speed(const FrictionParams<double>& fp, const Dual<
 struct ChainConst {
   double half_length_m;  // L/2: pins at +-L/2 along the link axis
   double k_N_m, p_Ns_m;  // joint spring and damper
+  double c_rot_Nms = 0;  // articulation damper on the two links' relative rotation rate (0: none)
   double Kb_N_m;         // bolt spring
   FrictionParams<double> friction;
 };
@@ -107,13 +108,16 @@ JointForces<S> joint_forces(const ChainConst& c, const S* a, const S& ca, const 
   f.fb[1] = -Fy;
   // d d / d omega = g - (z x Delta)/2 for each link.
   const S hx = -0.5 * (-dy), hy = -0.5 * dx;
-  f.fa[2] = -(c.k_N_m * (dx * gax + dy * gay)) - c.p_Ns_m * (rx * (gax + hx) + ry * (gay + hy));
-  f.fb[2] = -(c.k_N_m * (dx * gbx + dy * gby)) - c.p_Ns_m * (rx * (gbx + hx) + ry * (gby + hy));
+  // Articulation damper (docs/mbd.md#joint): a moment c_rot (omega_b - omega_a)
+  // on a and its opposite on b, R_rot = c_rot (omega_a - omega_b)^2 / 2.
+  const S wrel = a[5] - b[5];
+  f.fa[2] = -(c.k_N_m * (dx * gax + dy * gay)) - c.p_Ns_m * (rx * (gax + hx) + ry * (gay + hy)) - c.c_rot_Nms * wrel;
+  f.fb[2] = -(c.k_N_m * (dx * gbx + dy * gby)) - c.p_Ns_m * (rx * (gbx + hx) + ry * (gby + hy)) + c.c_rot_Nms * wrel;
   const S len2 = dx * dx + dy * dy;
   f.stretch_m = norm(dx, dy);
   f.tension_N = value(f.stretch_m) > 0 ? (Fx * dx + Fy * dy) / f.stretch_m : S(0.0);
   f.potential_J = 0.5 * c.k_N_m * len2;
-  f.dissipation_W = c.p_Ns_m * (rx * rx + ry * ry);
+  f.dissipation_W = c.p_Ns_m * (rx * rx + ry * ry) + c.c_rot_Nms * wrel * wrel;
   return f;
 }
 

@@ -30,4 +30,8 @@ struct DriveGeometry {
   Vec2 pitch_point(double s_m) const;
 };
 
+// The driven radius that, with driver radius r1_m, gives a pitch line of
+// length pitch_line_m on centre distance c_m (the same chain at another ratio).
+double driven_radius_for(double r1_m, double pitch_line_m, double c_m);
+
 }  // namespace cvt::mbd

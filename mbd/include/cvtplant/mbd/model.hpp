@@ -44,6 +44,9 @@ struct Sample {
   double tension_tight_N = 0;     // upper strand (into the driver wrap); NaN if no free joint
   double tension_slack_N = 0;     // lower strand
   int wrap_links[2] = {0, 0};     // links whose bolt is compressed by each pulley
+  // Running radius: mean radius of the bolts in each wrap (NaN when none);
+  // their ratio r2 / r1 is the geometric ratio (docs/mbd.md#outputs).
+  double radius_m[2] = {0, 0};
   double sheave_opening_m[2] = {0, 0};
   double clamp_N[2] = {0, 0};     // clamping force (clamped mode)
   // Energy ledger, from the release (t = 0): W_in - W_load - D_fric - D_damp
@@ -95,6 +98,10 @@ class ChainModel {
   int sheave_rate(int j) const { return sheave_base_ + 2 * j + 1; }
   int ledger(int k) const { return ledger_base_ + k; }  // 0 W_in, 1 W_load, 2 D_fric, 3 D_damp, 4 W_clamp
   bool clamped() const { return p_.sheaves == SheaveMode::clamped; }
+  // The driver sheave held at its opening (the start's ratio lock) in this phase.
+  bool driver_sheave_locked() const {
+    return clamped() && p_.start_ratio_lock && phase_ != Phase::run;
+  }
   // Error-weight scale of state i (docs/mbd.md#tolerances): the solver's
   // weight is 1 / (rtol (a_i |y_i| + scale_i)).
   double tolerance_scale(int i) const;
@@ -127,6 +134,10 @@ class ChainModel {
   std::string state_problem(const double* y) const;
 
   double clamp_force(int j, double t_s) const;
+  // Replaces the input profiles by constants from now on (the stepping
+  // interface's zero-order hold, docs/mbd.md#stepping): clamping forces
+  // (clamped sheaves), input torque, load torque (the road load still added).
+  void hold_inputs(double clamp1_N, double clamp2_N, double tau_in_Nm, double tau_load_Nm);
   // Load torque on the driven pulley at t and its speed w2: tau_load(t) plus
   // the road load (docs/rom.md#road-load), and its slope d/dw2.
   double load_torque(double t_s, double omega2_rad_s, double* slope = nullptr) const;

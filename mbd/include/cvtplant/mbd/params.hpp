@@ -4,6 +4,8 @@
 // presets), the seed's section-4 load case, and the choices the seed leaves
 // open (link count, link inertia, start-up, sheave mode), each with the
 // reason given in docs/mbd.md.
+#include <optional>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -78,6 +80,7 @@ struct MbdParams {
   double bolt_length_m = seed::kBlockLength_m;            // l_b (Eq. 5)
   double joint_stiffness_N_m = seed::kChainStiffness_N_m;  // k, force element between links
   double joint_damping_Ns_m = seed::kChainDamping_Ns_m;    // p, force element between links
+  double joint_rot_damping_Nms_rad = 0;  // articulation damper on the links' relative rotation (0: none, the seed's)
   double r1_m = seed::kDriverPitchRadius_m;  // driver pitch radius (bolt unloaded touches both flanks here)
   double r2_m = seed::kDrivenPitchRadius_m;  // driven pitch radius
   // --- choices the seed leaves open (docs/mbd.md#open-choices)
@@ -107,6 +110,18 @@ struct MbdParams {
   double settle_s = 0.1;
   double settle_drag_Ns_m = 20.0;
   StartAtSpeed start;  // after the settle; inactive: released from rest
+  // Clamped sheaves: the chain wrapped at this driver radius (and the driven
+  // radius that keeps the pitch line's length), the movable sheaves opened to
+  // seat it there (docs/mbd.md#start-up); 0: on the pitch radii.
+  double start_r1_m = 0;
+  // Clamped sheaves: the driver's movable sheave held at its start opening
+  // through the settle, the spin-up and the hold (a ratio lock, as a test
+  // rig's position-controlled primary), the driven one clamped; the force that
+  // holds it is the driver clamping that holds the ratio (docs/mbd.md#start-up).
+  bool start_ratio_lock = false;
+  // --- numerics: the error-weight scale of the links' rotation rates
+  // (docs/mbd.md#tolerances).
+  double tolerance_link_rate_rad_s = 10.0;
 
   double link_inertia() const {
     return link_inertia_kgm2 > 0 ? link_inertia_kgm2 : link_mass_kg * link_length_m * link_length_m / 12.0;
@@ -116,5 +131,30 @@ struct MbdParams {
 // The seed's section-4 scenario: tau_in = 100 N m, tau_load = 50 N m, Table 1,
 // friction case 1 or 2 of Table 2.
 MbdParams seed_case(int friction_case);
+
+// The named parameter sets (docs/mbd-production.md): the seed's Table 1 as
+// printed, and a production-like chain CVT on the seed's geometry whose chain,
+// bolts, friction and clamping come from published data on production chain
+// CVTs.
+enum class ParameterSet { seed, production };
+const char* parameter_set_name(ParameterSet s);                      // "seed", "production"
+std::optional<ParameterSet> parameter_set_by_name(std::string_view name);
+
+// The production-like set with clamped sheaves, no loads and no clamping
+// profile yet: a run sets the clamping forces, the torques and the start.
+MbdParams production_set();
+
+// What the production-like set is rated for (docs/mbd-production.md#envelope):
+// the operating envelope a controller drives it in, and the clamping design
+// the plausibility checks hold it to.
+struct ProductionEnvelope {
+  double rated_torque_Nm;         // input torque the variator is designed for
+  double omega1_min_rad_s;        // primary speeds of the controller's envelope
+  double omega1_max_rad_s;
+  double clamp_min_N, clamp_max_N;  // clamping range of each pulley's actuator
+  double clamp_safety;            // clamping safety factor against gross slip
+  double ratio_underdrive, ratio_overdrive;  // geometric ratio r2/r1 at the driver's stops
+};
+ProductionEnvelope production_envelope();
 
 }  // namespace cvt::mbd

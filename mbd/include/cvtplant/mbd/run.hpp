@@ -30,6 +30,16 @@ struct RunOptions {
 struct SolverCounters {
   long long steps = 0, rhs_evals = 0, jac_evals = 0, linear_setups = 0, newton_iters = 0;
   long long error_test_fails = 0, newton_fails = 0;
+  SolverCounters& operator+=(const SolverCounters& o) {
+    steps += o.steps;
+    rhs_evals += o.rhs_evals;
+    jac_evals += o.jac_evals;
+    linear_setups += o.linear_setups;
+    newton_iters += o.newton_iters;
+    error_test_fails += o.error_test_fails;
+    newton_fails += o.newton_fails;
+    return *this;
+  }
 };
 
 struct RunStats : SolverCounters {
@@ -38,6 +48,7 @@ struct RunStats : SolverCounters {
   // CPU time of the process over the run [s]: on a busy host, what the wall
   // time would be on an idle core.
   double cpu_s = 0;
+  double settle_cpu_s = 0;  // of it, the settle and the start at speed (before the release)
   double ledger_residual_max_rel = 0;  // max over samples of |ledger residual| / ledger scale
   double energy0_J = 0;                // E_kin + E_el at the release
   double ledger_floor_J = 0;           // smallest ledger scale (see ledger_scale_J)

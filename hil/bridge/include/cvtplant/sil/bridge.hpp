@@ -3,6 +3,11 @@
 // from cvt::port::Clock, so the same code runs on SocketCAN and, in unit
 // tests, on the loopback bus with a virtual clock.
 //
+// The plant is a template parameter (docs/sil.md#plant-interface): `Bridge`
+// is the bridge of the scene's real-time plant (ScenePlant, heap-free); a
+// host program may put another plant with the same members behind the same
+// bus code (the multibody reference, docs/sil.md#reference-plant).
+//
 // Lock-step (docs/sil.md#lock-step): a SimCtrl Step advances exactly
 // step_count frames, then one output group is sent. Real time
 // (docs/sil.md#real-time): the caller paces realtime_frame() on absolute
@@ -123,12 +128,15 @@ inline const char* to_string(CmdTimeoutReaction r) noexcept {
   return r == CmdTimeoutReaction::HoldLast ? "hold-last" : "dbc";
 }
 
-class Bridge {
+template <class Plant>
+class BasicBridge {
  public:
   enum class CmdState : std::uint8_t { NoneYet, Valid, TimedOut };
 
-  Bridge(port::CanTransport& bus, port::Clock& clock, FrameSink* sink = nullptr) noexcept
-      : bus_(bus), clock_(clock), sink_(sink) {}
+  // `plant_args` construct the plant (none for ScenePlant).
+  template <class... PlantArgs>
+  BasicBridge(port::CanTransport& bus, port::Clock& clock, FrameSink* sink = nullptr, PlantArgs&&... plant_args)
+      : bus_(bus), clock_(clock), sink_(sink), plant_(static_cast<PlantArgs&&>(plant_args)...) {}
 
   // Loads a scene and resets to its initial state in mode Ready.
   bool load_scene(const Scene& s) {
@@ -153,8 +161,19 @@ class Bridge {
     }
   }
 
-  // Switch to real time now (also what SimCtrl RunRealTime does).
-  void start_realtime() { enter_mode(can::PlantMode::RealTime); }
+  // Switch to real time now (also what SimCtrl RunRealTime does). A plant
+  // that cannot keep time refuses (docs/sil.md#reference-realtime): false,
+  // the mode unchanged.
+  bool start_realtime() {
+    if (!plant_.keeps_time()) {
+      ++realtime_refused_;
+      return false;
+    }
+    enter_mode(can::PlantMode::RealTime);
+    return true;
+  }
+  // RunRealTime requests and --mode realtime refused because the plant cannot keep time.
+  std::uint64_t realtime_refused() const noexcept { return realtime_refused_; }
 
   void set_cmd_timeout_reaction(CmdTimeoutReaction r) noexcept { cmd_reaction_ = r; }
   CmdTimeoutReaction cmd_timeout_reaction() const noexcept { return cmd_reaction_; }
@@ -176,7 +195,7 @@ class Bridge {
     const long n = plant_.frames();
     if (n % fast_cycle_frames_ == 0) {
       const bool slow_due = n % slow_cycle_frames_ == 0;
-      send_group(0, slow_due, slow_due);
+      send_group(0, slow_due, n % params_cycle_frames_ == 0, slow_due);
     }
   }
 
@@ -215,7 +234,10 @@ class Bridge {
     return u;
   }
   std::int64_t sim_ns() const noexcept { return static_cast<std::int64_t>(plant_.frames()) * plant_.frame_ns(); }
-  const ScenePlant& plant() const noexcept { return plant_; }
+  const Plant& plant() const noexcept { return plant_; }
+  // The plant itself, for what the bus does not carry (a host plant's
+  // settings and checks); stepping it behind the bridge's back breaks lock-step.
+  Plant& plant() noexcept { return plant_; }
   const RxCounts& rx() const noexcept { return rx_; }
   const TxCounts& tx() const noexcept { return tx_; }
   std::uint64_t cmd_timeouts() const noexcept { return cmd_timeouts_; }
@@ -252,8 +274,11 @@ class Bridge {
     rxbank_.reset(can::MessageId::CtrlShiftCmd);
     const std::int64_t cycle_ns = std::int64_t{can::PlantSpeeds::kCycleTime_ms} * 1000000;
     const std::int64_t slow_ns = std::int64_t{can::PlantStatus::kCycleTime_ms} * 1000000;
+    const std::int64_t params_ns = std::int64_t{can::PlantParams::kCycleTime_ms} * 1000000;
     fast_cycle_frames_ = cycle_ns / plant_.frame_ns() < 1 ? 1 : cycle_ns / plant_.frame_ns();
     slow_cycle_frames_ = slow_ns / plant_.frame_ns() < 1 ? 1 : slow_ns / plant_.frame_ns();
+    params_cycle_frames_ = params_ns / plant_.frame_ns() < 1 ? 1 : params_ns / plant_.frame_ns();
+    params_ = plant_.published();
   }
 
   // Deadlines run on simulated time in lock-step and on the host clock in
@@ -315,7 +340,7 @@ class Bridge {
   }
 
   void step_one_frame() {
-    if (plant_.fault() != RomFault::none) {
+    if (plant_.faulted()) {
       mode_ = can::PlantMode::Fault;
       return;
     }
@@ -327,8 +352,14 @@ class Bridge {
     if (shift_state_ == CmdState::TimedOut && cmd_reaction_ == CmdTimeoutReaction::Dbc)
       shift_ = can::rx_timeout_ramp(shift_, static_cast<float>(static_cast<double>(plant_.frame_ns()) * 1e-9));
     cmd_unused_ = false;
-    plant_.set_driven_clamp_command(driven_command());
-    if (plant_.step(current_inputs()) != RomFault::none) mode_ = can::PlantMode::Fault;
+    // The actuators deliver the supply's fraction of each clamping command
+    // (HarnessLoad.clamp_supply_factor, 1 unless the harness lowers it).
+    const double supply = load_.clamp_supply_factor;
+    plant_.set_driven_clamp_command(driven_command() * supply);
+    RomInputs<double> u = current_inputs();
+    u.clamp_N *= supply;
+    plant_.step(u);
+    if (plant_.faulted()) mode_ = can::PlantMode::Fault;
   }
 
   void count_rejection(const can::RxResult& r) {
@@ -352,7 +383,8 @@ class Bridge {
   static bool is_plant_output(std::uint32_t id) {
     return id == can::PlantSpeeds::kId || id == can::PlantRatio::kId || id == can::PlantForces::kId ||
            id == can::PlantStatus::kId || id == can::PlantDiag::kId || id == can::PlantBusDiag::kId ||
-           id == can::PlantCmdDiag::kId || id == can::PlantShift::kId;
+           id == can::PlantCmdDiag::kId || id == can::PlantShift::kId || id == can::PlantParams::kId ||
+           id == can::PlantRatioMap::kId || id == can::PlantThrustMap::kId;
   }
 
   void handle_io(port::CanIoStatus st, const can::CanFrame& f, bool draining) {
@@ -415,7 +447,7 @@ class Bridge {
     if (have_last_seq_ && m.step_seq == last_seq_) {
       ++rx_.requests_resent;
       if (m.sim_request != can::SimRequest::RunRealTime && mode_ != can::PlantMode::RealTime)
-        send_group(m.step_seq, last_group_diag_, true, true);
+        send_group(m.step_seq, last_group_diag_, last_group_params_, true, true);
       return;
     }
     if (m.sim_request == can::SimRequest::Step && (mode_ == can::PlantMode::RealTime || !plant_.loaded())) {
@@ -433,7 +465,7 @@ class Bridge {
           fault_scene_ = false;
           restart();
         }
-        send_group(m.step_seq, true);
+        send_group(m.step_seq, true, true);
         break;
       }
       case can::SimRequest::Step:
@@ -441,20 +473,25 @@ class Bridge {
         steps_requested_ += m.step_count;
         {
           const long before = plant_.frames();
-          bool slow_due = false;
+          const bool faulted_before = plant_.faulted();
+          bool slow_due = false, params_due = false;
           for (std::uint32_t i = 0; i < m.step_count; ++i) {
             step_one_frame();
             if (plant_.frames() % slow_cycle_frames_ == 0 && plant_.frames() != before) slow_due = true;
+            if (plant_.frames() % params_cycle_frames_ == 0 && plant_.frames() != before) params_due = true;
           }
-          send_group(m.step_seq, slow_due);
+          // A plant that stopped in this step: its reason (PlantDiag.plant_fault)
+          // goes out with the status that first shows the fault.
+          if (plant_.faulted() && !faulted_before) slow_due = true;
+          send_group(m.step_seq, slow_due, params_due);
         }
         break;
-      case can::SimRequest::RunRealTime: enter_mode(can::PlantMode::RealTime); break;
+      case can::SimRequest::RunRealTime: start_realtime(); break;
       case can::SimRequest::Pause:
         if (mode_ != can::PlantMode::Fault) enter_mode(can::PlantMode::Ready);
-        send_group(m.step_seq, true);
+        send_group(m.step_seq, true, true);
         break;
-      case can::SimRequest::None: send_group(m.step_seq, true); break;
+      case can::SimRequest::None: send_group(m.step_seq, true, true); break;
     }
   }
 
@@ -482,13 +519,14 @@ class Bridge {
   }
 
   // docs/can.md#layout "Output groups": Speeds, Ratio, Forces, [Shift,]
-  // [Diag, BusDiag, CmdDiag,] Status.
+  // [Diag, BusDiag, CmdDiag,] [Params, RatioMap, ThrustMap,] Status.
   // In real time the 100 ms frames (the diagnostics, Status) go out only on
   // every tenth 10 ms group, as the DBC cycle times say; there step_seq_ack
   // is 0 because no request is being acknowledged.
   // A resent group repeats the last group's sample_tag: same sample, the
   // receivers can tell it from a new one.
-  void send_group(std::uint8_t step_seq, bool with_diag, bool with_status = true, bool resend = false) {
+  void send_group(std::uint8_t step_seq, bool with_diag, bool with_params, bool with_status = true,
+                  bool resend = false) {
     const RomOutputs<double> o = plant_.loaded() ? plant_.outputs() : RomOutputs<double>{};
     const auto tag = resend ? last_group_tag_ : static_cast<std::uint8_t>(groups_sent_ & 0x0Fu);
     if (resend) {
@@ -496,33 +534,31 @@ class Bridge {
     } else {
       last_group_tag_ = tag;
       last_group_diag_ = with_diag;
+      last_group_params_ = with_params;
     }
     auto f = [](double v) { return static_cast<float>(v); };
     can::PlantSpeeds sp{tag, f(o.omega1_rad_s), f(o.omega2_rad_s), f(o.torque_transmitted_Nm)};
     send(sp, tx_speeds_);
     can::PlantRatio ra{tag, f(o.speed_ratio), f(o.geometric_ratio), f(o.slip)};
     send(ra, tx_ratio_);
-    // Without wedging the ROM has one lumped clamping force (docs/rom.md#axial),
-    // which both signals carry; with it the driven actuator's own force.
-    const double driven_N = plant_.variable_ratio() ? plant_.driven_clamp_N() : o.clamp_force_N;
-    can::PlantForces fo{tag, f(o.clamp_force_N), f(driven_N)};
+    can::PlantForces fo{tag, f(o.clamp_force_N), f(plant_.driven_axial_N())};
     send(fo, tx_forces_);
     // PlantShift only from a plant with a variable ratio (docs/can.md#layout):
     // a fixed-ratio plant's radii are constants.
     if (plant_.variable_ratio()) {
-      const RomParams& p = plant_.scene()->params;
-      const double rho = o.radius1_m - p.r1_m;
+      const EndStops stops = plant_.end_stops();
       can::PlantShift sh{};
       sh.sample_tag = tag;
       sh.radius_driver_m = f(o.radius1_m);
       sh.radius_driven_m = f(o.radius2_m);
-      sh.end_stop_underdrive = rho < -p.radial_travel_m;
-      sh.end_stop_overdrive = rho > p.radial_travel_m;
+      sh.end_stop_underdrive = stops.underdrive;
+      sh.end_stop_overdrive = stops.overdrive;
       send(sh, tx_shift_);
     }
     if (with_diag) {
       // Counters wrap modulo 2^16 by design (docs/can.md#layout).
       can::PlantDiag d;
+      d.plant_fault = plant_.loaded() ? plant_.fault_code() : can::PlantFault::None;
       d.rejected_frames = static_cast<std::uint16_t>(rx_.rejected());
       d.cmd_timeouts = static_cast<std::uint16_t>(cmd_timeouts_);
       d.rt_overruns = static_cast<std::uint16_t>(rt_overruns_);
@@ -541,14 +577,15 @@ class Bridge {
       cd.cmd_superseded = static_cast<std::uint16_t>(rx_.cmd_superseded);
       send(cd, tx_cmd_diag_);
     }
+    if (with_params && plant_.loaded()) send_params();
     if (!with_status) {
       if (!resend) ++groups_sent_;
       return;
     }
     can::PlantStatus s;
-    s.plant_mode = plant_.fault() != RomFault::none ? can::PlantMode::Fault : mode_;
+    s.plant_mode = plant_.faulted() ? can::PlantMode::Fault : mode_;
     s.sim_time_us = static_cast<std::uint32_t>(static_cast<std::uint64_t>(sim_ns() / 1000));
-    s.fault_watchdog = plant_.fault() != RomFault::none;
+    s.fault_watchdog = plant_.faulted();
     s.fault_cmd_timeout =
         cmd_state_ == CmdState::TimedOut || shift_state_ == CmdState::TimedOut || cmd_timeout_since_status_;
     s.fault_load_timeout = load_timed_out_ || load_timeout_since_status_;
@@ -570,10 +607,32 @@ class Bridge {
     if (!resend) ++groups_sent_;
   }
 
+  // docs/sil.md#published-parameters.
+  void send_params() {
+    auto f = [](double v) { return static_cast<float>(v); };
+    can::PlantParams pp;
+    pp.variable_ratio = params_.variable_ratio;
+    pp.capacity_coeff = f(params_.capacity_coeff);
+    pp.radius_driver_m = f(params_.radius_driver_m);
+    pp.clamp_max_N = f(params_.clamp_max_N);
+    send(pp, tx_params_);
+    if (!params_.variable_ratio) return;
+    can::PlantRatioMap rm;
+    rm.ratio_overdrive_stop = f(params_.ratio[0]);
+    rm.ratio_setup = f(params_.ratio[1]);
+    rm.ratio_underdrive_stop = f(params_.ratio[2]);
+    send(rm, tx_ratio_map_);
+    can::PlantThrustMap tm;
+    tm.thrust_ratio_overdrive_stop = f(params_.thrust_ratio[0]);
+    tm.thrust_ratio_setup = f(params_.thrust_ratio[1]);
+    tm.thrust_ratio_underdrive_stop = f(params_.thrust_ratio[2]);
+    send(tm, tx_thrust_map_);
+  }
+
   port::CanTransport& bus_;
   port::Clock& clock_;
   FrameSink* sink_;
-  ScenePlant plant_;
+  Plant plant_;
   can::RxBank rxbank_;
   can::AnyMessage any_;
   can::TxChannel<can::PlantSpeeds> tx_speeds_;
@@ -584,6 +643,10 @@ class Bridge {
   can::TxChannel<can::PlantDiag> tx_diag_;
   can::TxChannel<can::PlantBusDiag> tx_bus_diag_;
   can::TxChannel<can::PlantCmdDiag> tx_cmd_diag_;
+  can::TxChannel<can::PlantParams> tx_params_;
+  can::TxChannel<can::PlantRatioMap> tx_ratio_map_;
+  can::TxChannel<can::PlantThrustMap> tx_thrust_map_;
+  PublishedParams params_{};
 
   can::PlantMode mode_ = can::PlantMode::Init;
   CmdTimeoutReaction cmd_reaction_ = CmdTimeoutReaction::Dbc;
@@ -600,7 +663,7 @@ class Bridge {
   bool cmd_unused_ = false;  // a used CtrlCmd no plant frame has applied yet
   std::uint64_t dropped_at_status_ = 0;
   std::int64_t cmd_last_ns_ = 0, load_last_ns_ = 0;
-  long fast_cycle_frames_ = 10, slow_cycle_frames_ = 100;
+  long fast_cycle_frames_ = 10, slow_cycle_frames_ = 100, params_cycle_frames_ = 1000;
 
   bool fault_scene_ = false;
   bool cmd_timeout_since_status_ = false, load_timeout_since_status_ = false;
@@ -609,8 +672,8 @@ class Bridge {
   RxCounts rx_{};
   TxCounts tx_{};
   std::uint64_t cmd_timeouts_ = 0, load_timeouts_ = 0, rt_overruns_ = 0;
-  std::uint64_t steps_requested_ = 0, groups_sent_ = 0, groups_resent_ = 0;
-  bool have_last_seq_ = false, last_group_diag_ = false;
+  std::uint64_t steps_requested_ = 0, groups_sent_ = 0, groups_resent_ = 0, realtime_refused_ = 0;
+  bool have_last_seq_ = false, last_group_diag_ = false, last_group_params_ = false;
   std::uint8_t last_seq_ = 0, last_group_tag_ = 0;
 };
 
@@ -620,8 +683,8 @@ class Bridge {
 // starts while this one is still running. Late frames are caught up (no
 // sleep), so simulated time keeps pace with the clock. Runs while the bridge
 // is in RealTime, until end_sim_ns of simulated time (0 = no end) or *stop.
-template <class OnLateness>
-void pace_realtime(Bridge& b, port::Clock& clock, std::int64_t end_sim_ns, const volatile std::sig_atomic_t* stop,
+template <class BridgeT, class OnLateness>
+void pace_realtime(BridgeT& b, port::Clock& clock, std::int64_t end_sim_ns, const volatile std::sig_atomic_t* stop,
                    OnLateness&& on_lateness) {
   const std::int64_t period = b.frame_ns();
   std::int64_t deadline = clock.now_ns() + period;
@@ -634,5 +697,9 @@ void pace_realtime(Bridge& b, port::Clock& clock, std::int64_t end_sim_ns, const
     if (clock.now_ns() > deadline) b.note_overrun();
   }
 }
+
+// The bridge of a scene's real-time plant: heap-free, what firmware and
+// cvtplant-bridge run.
+using Bridge = BasicBridge<ScenePlant>;
 
 }  // namespace cvt::sil

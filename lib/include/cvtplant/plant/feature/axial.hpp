@@ -16,15 +16,6 @@
 
 namespace cvt {
 
-// The feature's scene keys.
-inline constexpr RomParamKey kRomAxialKeys[] = {
-    rom_param("actuator_tau_s", &RomParams::actuator_tau_s, "s", "clamping actuator lag (both actuators)"),
-    rom_param("clamp_max_N", &RomParams::clamp_max_N, "N", "clamping actuator saturation"),
-    rom_param("sheave_mass_kg", &RomParams::sheave_mass_kg, "kg", "movable driver sheave"),
-    rom_param("sheave_damping_Ns_m", &RomParams::sheave_damping_Ns_m, "N.s/m", "sheave damping"),
-    rom_param("K_ax_N_m", &RomParams::K_ax_N_m, "N/m", "lumped bolt stiffness of the wrap"),
-};
-
 // The clamping force's partial derivatives: d F_clamp / d x_col for at most
 // two states (delta, and rho with the radial DOF); none while the bolt is
 // slack or without the feature (the force is then an input).

@@ -11,12 +11,6 @@
 
 namespace cvt {
 
-// The feature's scene keys.
-inline constexpr RomParamKey kRomDeformationKeys[] = {
-    rom_param("zeta1_rad", &RomParams::zeta1_rad, "rad", "wrap angle of the entry lump"),
-    rom_param("zeta2_rad", &RomParams::zeta2_rad, "rad", "wrap angle of the exit lump"),
-};
-
 // The flank half angles the two lumps press on [rad] and their tangents.
 struct RomFlankAngles {
   double beta1_rad = 0.0, beta2_rad = 0.0;

@@ -21,28 +21,6 @@
 
 namespace cvt {
 
-// The core's scene keys (docs/rom.md#lumped-parameters, #holds, #watchdog);
-// the friction law's are the [friction] table's.
-inline constexpr RomParamKey kRomDriveTrainKeys[] = {
-    rom_param("r1_m", &RomParams::r1_m, "m", "driver pitch radius at the set-up ratio"),
-    rom_param("r2_m", &RomParams::r2_m, "m", "driven pitch radius at the set-up ratio"),
-    rom_param("beta0_deg", &RomParams::beta0_rad, "deg", "half sheave angle", 3.14159265358979323846 / 180.0),
-    rom_param("center_distance_m", &RomParams::center_distance_m, "m", "pulley centre distance"),
-    rom_param("J1_kgm2", &RomParams::J1_kgm2, "kg.m2", "driver pulley inertia"),
-    rom_param("J2_kgm2", &RomParams::J2_kgm2, "kg.m2", "driven pulley inertia"),
-    rom_param("lump_mass_kg", &RomParams::lump_mass_kg, "kg", "mass of a link lump"),
-    rom_param("k1_N_m", &RomParams::k1_N_m, "N/m", "strand stiffness per lump"),
-    rom_param("c1_Ns_m", &RomParams::c1_Ns_m, "N.s/m", "strand damping per lump"),
-    rom_param("k2_N_m", &RomParams::k2_N_m, "N/m", "lump-to-lump stiffness"),
-    rom_param("c2_Ns_m", &RomParams::c2_Ns_m, "N.s/m", "lump-to-lump damping"),
-    rom_param("entry_load_share", &RomParams::entry_load_share, "1", "the entry lump's share of the wrap's normal load"),
-    rom_param("normal_load_factor", &RomParams::normal_load_factor, "1", "effective normal load over F_ax / cos(beta)"),
-    rom_flag("hold_driver_speed", &RomParams::hold_driver_speed, "driver held at its initial speed"),
-    rom_flag("hold_driven_speed", &RomParams::hold_driven_speed, "driven pulley held at its initial speed"),
-    rom_param("stick_speed_m_s", &RomParams::stick_speed_m_s, "m/s", "slip below which a lump is reported sticking"),
-    rom_param("speed_limit_rad_s", &RomParams::speed_limit_rad_s, "rad/s", "pulley speed beyond the model's range"),
-};
-
 template <class Cfg>
 class RomDriveTrain {
   using T = typename Cfg::Scalar;

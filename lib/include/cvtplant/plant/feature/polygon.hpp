@@ -18,12 +18,6 @@
 
 namespace cvt {
 
-// The feature's scene keys.
-inline constexpr RomParamKey kRomPolygonKeys[] = {
-    rom_param("pitch_m", &RomParams::pitch_m, "m", "link pitch L"),
-    rom_param("ripple_gain", &RomParams::ripple_gain, "1", "link ripple gain g (0: smooth axial force, 1: rigid bolts)"),
-};
-
 // What the shared contact keeps of the ripple: cos and sin of its phase
 // (0 with the ripple off); nothing without the feature.
 template <class T, bool kOn>

@@ -20,19 +20,10 @@
 #include "cvtplant/plant/rom_config.hpp"
 #include "cvtplant/plant/rom_energy.hpp"
 #include "cvtplant/plant/rom_formulas.hpp"
+#include "cvtplant/plant/rom_outputs.hpp"
 #include "cvtplant/plant/rom_params.hpp"
 
 namespace cvt {
-
-// The feature's scene keys (with the driven clamping's, feature/driven_clamp.hpp).
-inline constexpr RomParamKey kRomRadialKeys[] = {
-    rom_param("driven_clamp_N", &RomParams::driven_clamp_N, "N", "driven clamping F_ax2 (the command's start)"),
-    rom_param("radial_mass_kg", &RomParams::radial_mass_kg, "kg", "chain mass reflected to the radial DOF"),
-    rom_param("radial_damping_Ns_m", &RomParams::radial_damping_Ns_m, "N.s/m", "radial damping"),
-    rom_param("radial_travel_m", &RomParams::radial_travel_m, "m", "radial travel to the ratio end stops"),
-    rom_param("radial_stop_N_m", &RomParams::radial_stop_N_m, "N/m", "end stop stiffness"),
-    rom_param("wrap_tension_share", &RomParams::wrap_tension_share, "1", "the wraps' mean tension difference per N of dT"),
-};
 
 // The strands' forces k1 e_i + c1 e_i' (seed Eq. 8).
 template <class S>
@@ -109,6 +100,7 @@ class RomRadial {
   void power(const typename Cfg::State&, const T&, const T&, const T&, const T&, RomPower<A>&) const {}
   bool radius_in_range(const typename Cfg::State&) const { return true; }
   void set_driven_clamp_N(double) {}
+  void outputs(const typename Cfg::State&, RomOutputs<T>&) const {}
 };
 
 template <class Cfg>
@@ -145,6 +137,7 @@ class RomRadial<Cfg, true> {
     cr_ = T(p.radial_damping_Ns_m);
     two_tan_b0_si_ = 2.0 * tb;
     driven_force_ = T(2.0 * tb * p.driven_clamp_N);
+    driven_clamp_si_N_ = p.driven_clamp_N;
     travel_ = T(p.radial_travel_m);
     k_stop_ = T(p.radial_stop_N_m);
     // docs/rom.md#wrap-tension: g = eta theta1 at the set-up radii.
@@ -177,7 +170,12 @@ class RomRadial<Cfg, true> {
   }
   template <class S>
   S pitch_radius2(const S& r2, const Vec<S>& x) const {
-    return r2 + driven_radius_change(x(L::kRho), S(a1_), S(a2_), S(a3_));
+    return r2 + driven_radius_change(x(L::kRho));
+  }
+  // r2(rho) - r2, the cubic above.
+  template <class S>
+  S driven_radius_change(const S& rho) const {
+    return cvt::driven_radius_change(rho, S(a1_), S(a2_), S(a3_));
   }
   // kappa(rho) = -dr2/drho (theta1 / theta2 to 1e-5) and d kappa / d rho.
   template <class S>
@@ -342,14 +340,26 @@ class RomRadial<Cfg, true> {
   // as the set-up, so the set-up value gives the same bits
   // (docs/rom.md#driven-clamping).
   void set_driven_clamp_N(double f_N) {
+    driven_clamp_si_N_ = f_N;
     driven_force_ = T(two_tan_b0_si_ * f_N);
     acc_.driven_force = Acc(two_tan_b0_si_ * f_N);
+  }
+
+  // What a frame reports of the radial DOF (docs/rom.md#driven-clamping,
+  // #end-stop): the driven clamping force F_ax2, and the chain pressed into
+  // a ratio end stop, underdrive (rho < -travel) or overdrive (rho > travel).
+  void outputs(const State& x, RomOutputs<T>& o) const {
+    o.driven_clamp_force_N = T(driven_clamp_si_N_);
+    const T pen = stop_penetration(x(L::kRho));
+    o.stop_overdrive = pen > T(0);
+    o.stop_underdrive = pen < T(0);
   }
 
  private:
   T a1_{}, a2_{}, a3_{}, two_tan_b0_{}, tan1_{}, tan2_{}, inv_mr_{}, cr_{}, driven_force_{}, travel_{}, k_stop_{};
   T wrap_g_{};
   double two_tan_b0_si_ = 0.0;
+  double driven_clamp_si_N_ = 0.0;  // F_ax2 in N, as reported (RomOutputs)
   struct {
     Acc mr{}, cr{}, a1{}, a2{}, a3{}, two_tan_b0{}, driven_force{}, k_stop{}, wrap_g{};
   } acc_;

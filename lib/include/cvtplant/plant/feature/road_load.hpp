@@ -14,14 +14,6 @@
 
 namespace cvt {
 
-// The feature's scene keys.
-inline constexpr RomParamKey kRomRoadLoadKeys[] = {
-    rom_param("road_T0_Nm", &RomParams::road_T0_Nm, "N.m", "rolling resistance at the driven shaft"),
-    rom_param("road_cv_Nms_rad", &RomParams::road_cv_Nms_rad, "N.m.s/rad", "viscous load coefficient"),
-    rom_param("road_ca_Nms2_rad2", &RomParams::road_ca_Nms2_rad2, "N.m.s2/rad2", "aerodynamic load coefficient"),
-    rom_param("road_w_eps_rad_s", &RomParams::road_w_eps_rad_s, "rad/s", "tanh smoothing of the rolling resistance's sign"),
-};
-
 template <class Cfg, bool kCarried = Cfg::carried(rom_feature::road_load)>
 class RomRoadLoad {
   using T = typename Cfg::Scalar;

@@ -31,18 +31,6 @@
 
 namespace cvt {
 
-// The feature's scene keys (docs/rom.md#tension).
-inline constexpr RomParamKey kRomTensionKeys[] = {
-    rom_param("chain_mass_kg_m", &RomParams::chain_mass_kg_m, "kg/m", "chain mass per metre m'"),
-    rom_param("chain_stiffness_N", &RomParams::chain_stiffness_N, "N", "link stiffness times pitch, kL"),
-    rom_param("creep_gain", &RomParams::creep_gain, "1", "creep gain g"),
-    rom_param("stop_tension_N", &RomParams::stop_tension_N, "N", "the driver wrap's mean tension at rest on the stops"),
-    rom_param("stop_tension_share", &RomParams::stop_tension_share, "1", "its rise per N of dT on the stops, eta_s"),
-    rom_param("centrifugal_gain", &RomParams::centrifugal_gain, "1", "centrifugal gain kappa"),
-    rom_param("wrap_excess_share", &RomParams::wrap_excess_share, "1", "the driver wrap's mean over the strands', per N of dT"),
-    rom_flag("fixed_sheaves", &RomParams::fixed_sheaves, "the driver sheave never leaves its stop"),
-};
-
 // The loads at a state carry the tension state with the feature (an empty
 // base without it).
 template <class S, bool kOn>

@@ -1,0 +1,96 @@
+#pragma once
+// The reference's inputs by name (docs/mbd.md#parameters): one line per
+// field of MbdParams and RunOptions, in declaration order, nested structs
+// flattened with their group (physics/param_field.hpp). The reference-run
+// cache key (docs/validation.md#cache) and any reader or writer of these
+// parameters walk this list, so a field added to MbdParams is added here in
+// one line; validation/tests/test_param_lists.cpp fails until it is.
+#include "cvtplant/friction/friction_fields.hpp"
+#include "cvtplant/mbd/params.hpp"
+#include "cvtplant/mbd/run.hpp"
+#include "cvtplant/physics/param_field.hpp"
+
+namespace cvt::mbd {
+
+inline constexpr NamedValue<SheaveMode> kSheaveModeNames[] = {{"fixed", SheaveMode::fixed},
+                                                              {"clamped", SheaveMode::clamped}};
+inline constexpr NamedValue<Method> kMethodNames[] = {{"bdf", Method::bdf}, {"rk4", Method::rk4}};
+
+// v(const ParamField&, field&) for every field of MbdParams (P: MbdParams or
+// const MbdParams); the field is a double, an int, a bool, an enum or a
+// TimeProfile.
+template <class P, class V>
+void visit_mbd_params(P& p, V&& v) {
+  const auto in = [&v](const char* group) {
+    return [&v, group](ParamField f, auto& x) {
+      f.group = group;
+      v(f, x);
+    };
+  };
+  v(ParamField{"beta0_rad", "rad"}, p.beta0_rad);
+  v(ParamField{"center_distance_m", "m"}, p.center_distance_m);
+  v(ParamField{"link_mass_kg", "kg"}, p.link_mass_kg);
+  v(ParamField{"J1_kgm2", "kg.m^2"}, p.J1_kgm2);
+  v(ParamField{"J2_kgm2", "kg.m^2"}, p.J2_kgm2);
+  v(ParamField{"link_length_m", "m"}, p.link_length_m);
+  v(ParamField{"bolt_stiffness_N_m", "N/m"}, p.bolt_stiffness_N_m);
+  v(ParamField{"bolt_length_m", "m"}, p.bolt_length_m);
+  v(ParamField{"joint_stiffness_N_m", "N/m"}, p.joint_stiffness_N_m);
+  v(ParamField{"joint_damping_Ns_m", "N.s/m"}, p.joint_damping_Ns_m);
+  v(ParamField{"joint_rot_damping_Nms_rad", "N.m.s/rad"}, p.joint_rot_damping_Nms_rad);
+  v(ParamField{"r1_m", "m"}, p.r1_m);
+  v(ParamField{"r2_m", "m"}, p.r2_m);
+  v(ParamField{"links", "1"}, p.links);
+  v(ParamField{"link_inertia_kgm2", "kg.m^2"}, p.link_inertia_kgm2);
+  v(ParamField{"sheave_deformation", ""}, p.sheave_deformation);
+  visit_friction_fields(p.friction, in("friction"));
+  v(ParamField{"tau_in_Nm", "N.m"}, p.tau_in_Nm);
+  v(ParamField{"tau_load_Nm", "N.m"}, p.tau_load_Nm);
+  {
+    const auto road = in("road");
+    road(ParamField{"T0_Nm", "N.m"}, p.road.T0_Nm);
+    road(ParamField{"cv_Nms_rad", "N.m.s/rad"}, p.road.cv_Nms_rad);
+    road(ParamField{"ca_Nms2_rad2", "N.m.s^2/rad^2"}, p.road.ca_Nms2_rad2);
+    road(ParamField{"w_eps_rad_s", "rad/s"}, p.road.w_eps_rad_s);
+  }
+  in("hold1")(ParamField{"active", ""}, p.hold1.active);
+  in("hold1")(ParamField{"omega_rad_s", "rad/s"}, p.hold1.omega_rad_s);
+  in("hold2")(ParamField{"active", ""}, p.hold2.active);
+  in("hold2")(ParamField{"omega_rad_s", "rad/s"}, p.hold2.omega_rad_s);
+  v(ParamField{"sheaves", ""}, p.sheaves);
+  v(ParamField{"clamp1_N", "N"}, p.clamp1_N);
+  v(ParamField{"clamp2_N", "N"}, p.clamp2_N);
+  v(ParamField{"sheave_mass_kg", "kg"}, p.sheave_mass_kg);
+  v(ParamField{"sheave_damping_Ns_m", "N.s/m"}, p.sheave_damping_Ns_m);
+  v(ParamField{"sheave_stop_m", "m"}, p.sheave_stop_m);
+  v(ParamField{"sheave_stop_N_m", "N/m"}, p.sheave_stop_N_m);
+  v(ParamField{"settle_s", "s"}, p.settle_s);
+  v(ParamField{"settle_drag_Ns_m", "N.s/m"}, p.settle_drag_Ns_m);
+  {
+    const auto start = in("start");
+    start(ParamField{"active", ""}, p.start.active);
+    start(ParamField{"omega1_rad_s", "rad/s"}, p.start.omega1_rad_s);
+    start(ParamField{"omega2_rad_s", "rad/s"}, p.start.omega2_rad_s);
+    start(ParamField{"spinup_s", "s"}, p.start.spinup_s);
+    start(ParamField{"hold_s", "s"}, p.start.hold_s);
+  }
+  v(ParamField{"start_r1_m", "m"}, p.start_r1_m);
+  v(ParamField{"start_ratio_lock", ""}, p.start_ratio_lock);
+  v(ParamField{"tolerance_link_rate_rad_s", "rad/s"}, p.tolerance_link_rate_rad_s);
+}
+
+// The same for RunOptions; max_steps is a cap (it ends a run, it does not
+// change the samples made up to there).
+template <class P, class V>
+void visit_run_options(P& r, V&& v) {
+  v(ParamField{"method", ""}, r.method);
+  v(ParamField{"t_end_s", "s"}, r.t_end_s);
+  v(ParamField{"rtol", "1"}, r.rtol);
+  v(ParamField{"dt_s", "s"}, r.dt_s);
+  v(ParamField{"sample_s", "s"}, r.sample_s);
+  v(ParamField{"max_steps", "1", ParamFit::none, 1.0, "", true}, r.max_steps);
+  v(ParamField{"ledger_tol", "1"}, r.ledger_tol);
+  v(ParamField{"settle_rtol", "1"}, r.settle_rtol);
+}
+
+}  // namespace cvt::mbd

@@ -1,0 +1,59 @@
+// The options `validate` and `calibrate` share (docs/cli.md#validate).
+#include "validation_options.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <system_error>
+
+#include "commands.hpp"
+
+namespace cvtcli {
+
+namespace {
+
+void make_dir(const std::string& d) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(d, ec)) return;
+  if (std::filesystem::exists(d, ec)) throw UsageError{"--out-dir: '" + d + "' exists and is not a directory"};
+  std::filesystem::create_directories(d, ec);
+  if (ec || !std::filesystem::is_directory(d, ec))
+    throw UsageError{"--out-dir: cannot create directory '" + d + "'"};
+}
+
+}  // namespace
+
+void add_reference_options(CLI::App* sub, ReferenceOptions& o, const std::string& out_dir_what) {
+  sub->add_option("--out-dir", o.out_dir, out_dir_what + " (created with its parents)")->capture_default_str();
+  sub->add_option("--sheaves", o.sheaves,
+                  "The reference's sheaves: scene (fixed for a scene whose plant has fixed sheaves, else clamped), "
+                  "clamped (pushed by the scene's clamping) or fixed (the seed's pulleys; the axial force is then "
+                  "the reference's output)")
+      ->capture_default_str()
+      ->check(CLI::IsMember(std::vector<std::string>(std::begin(cvt::validation::kSheaveChoiceNames),
+                                                     std::end(cvt::validation::kSheaveChoiceNames))));
+  sub->add_option("--rtol", o.rtol, "Reference's BDF relative tolerance, [1e-11, 1e-3]")->capture_default_str();
+  sub->add_option("--max-steps", o.max_steps, "Cap on the reference's integrator steps per scene, [1, 1e12]")
+      ->capture_default_str();
+}
+
+cvt::validation::RunSettings reference_settings(const CLI::App* sub, const ReferenceOptions& o) {
+  if (sub->count("--t-end") > 0 && !(o.t_end_s > 0 && std::isfinite(o.t_end_s)))
+    throw UsageError{"--t-end: must be a positive number of seconds"};
+  if (!(o.rtol >= 1e-11 && o.rtol <= 1e-3)) throw UsageError{"--rtol: outside [1e-11, 1e-3]"};
+  if (!(o.max_steps >= 1 && o.max_steps <= 1000000000000LL)) throw UsageError{"--max-steps: outside [1, 1e12]"};
+  if (o.out_dir.empty()) throw UsageError{"--out-dir: empty"};
+  cvt::validation::RunSettings st;
+  st.sheaves = cvt::validation::sheave_choice(o.sheaves);
+  st.t_end_s = o.t_end_s;
+  st.rtol = o.rtol;
+  st.max_steps = o.max_steps;
+  st.cache_dir = o.out_dir + "/reference-cache";
+  return st;
+}
+
+void prepare_out_dir(const ReferenceOptions& o) {
+  make_dir(o.out_dir);
+  make_dir(o.out_dir + "/reference-cache");
+}
+
+}  // namespace cvtcli
