@@ -388,3 +388,84 @@ TEST_CASE("composition: every feature combination a scene can name runs in the h
   s.params.fixed_sheaves = true;  // the radial DOF's sheave is held by its actuator
   CHECK(std::string(cvt::validate_scene(s).field) == "fixed_sheaves");
 }
+
+namespace {
+
+// What a run of the full composition ends with.
+struct FullRun {
+  cvt::RomOutputs<double> end{};  // the outputs of the last frame
+  double x1_m = 0, x2_m = 0, xd1_m_s = 0, xd2_m_s = 0;  // the lumps at the end
+  double ratio_at_step = 0;       // geometric ratio r2/r1 just before the clamping steps
+  double worst_residual = 0;      // the ledger's |residual| / flows, worst frame
+  double creep_min = 1e300;       // the smallest creep speed g eps v_c over the run [m/s]
+};
+
+// ratio-control with every feature of the variable-ratio plant on (the
+// driver's actuator and sheave, the driven clamping, the radial DOF, the
+// chain's tension state, road load): tools/scenes/ratio-control-tension.toml,
+// the primary clamping stepped from 3.3 kN to `after_N` at 2 s.
+FullRun run_full_composition(double after_N, double t_end_s) {
+  cvt::Scene s = *cvt::find_builtin_scene("ratio-control");
+  s.features |= f::tension;
+  s.clamp = cvt::step_profile(3300.0, after_N, 2.0);
+  s.t_end_s = t_end_s;
+  FullRun r;
+  REQUIRE(cvt::run_scene<double, kFullRoad>(s, cvt::sim_config_of(s), [&](long i, double t, const auto& sim) {
+            const cvt::RomOutputs<double> o = sim.outputs();
+            if (i == 1900) r.ratio_at_step = o.geometric_ratio;  // 1.9 s, before the step
+            const auto& e = sim.energy();
+            if (double(e.scale_J()) > 10.0)
+              r.worst_residual = std::max(r.worst_residual, std::fabs(double(e.residual_J()) / double(e.scale_J())));
+            if (t > 0.5)
+              r.creep_min = std::min(r.creep_min, s.params.creep_gain * o.creep_strain * o.radius2_m * o.omega2_rad_s);
+            r.end = o;
+            const auto x = sim.state_si();
+            r.x1_m = x(cvt::RomLayout<kFull>::kX1);
+            r.x2_m = x(cvt::RomLayout<kFull>::kX2);
+            r.xd1_m_s = x(cvt::RomLayout<kFull>::kV1);
+            r.xd2_m_s = x(cvt::RomLayout<kFull>::kV2);
+            return true;
+          }) == cvt::RomFault::none);
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("composition: tension, wedging, both clampings and road load in one scene") {
+  // Cost: two 4 s runs of the full plant in double, about 0.1 s.
+  const cvt::RomParams p = cvt::find_builtin_scene("ratio-control")->params;
+  const FullRun held = run_full_composition(3300.0, 4.0);
+  const FullRun step = run_full_composition(3500.0, 4.0);
+  MESSAGE("held: ratio " << held.ratio_at_step << " -> " << held.end.geometric_ratio << ", speed ratio "
+                         << held.end.speed_ratio << "; stepped to 3.5 kN: ratio " << step.ratio_at_step << " -> "
+                         << step.end.geometric_ratio << ", speed ratio " << step.end.speed_ratio
+                         << "; worst ledger residual " << held.worst_residual << " / " << step.worst_residual
+                         << "; creep speed at the end " << p.creep_gain * held.end.creep_strain * held.end.radius2_m *
+                                                                   held.end.omega2_rad_s
+                         << " m/s, v_rel1 - v_rel2 " << held.end.v_rel1_m_s - held.end.v_rel2_m_s);
+  for (const FullRun* r : {&held, &step}) {
+    // The ledger closes with the creep loss, the radial DOF's and both
+    // actuators' work and the road load (docs/rom.md#tension-radial).
+    CHECK(r->worst_residual < 1e-4);
+    // The tension acts all along: the chain creeps under the transmitted torque.
+    CHECK(r->creep_min > 1e-4);
+    // The two lumps differ: the entry lump meets the chain faster by the
+    // creep speed, v_rel_i = (v_c,i + xd_i) - v1 with v_c,1 = v_c (1 + g eps)
+    // (docs/rom.md#tension), so v_rel1 - v_rel2 = g eps v_c + xd1 - xd2
+    // exactly, and the lumps' displacements part.
+    const double creep = p.creep_gain * r->end.creep_strain * r->end.radius2_m * r->end.omega2_rad_s;
+    CHECK(r->end.v_rel1_m_s - r->end.v_rel2_m_s == doctest::Approx(creep + r->xd1_m_s - r->xd2_m_s).epsilon(1e-9));
+    CHECK(std::fabs(r->end.v_rel1_m_s - r->end.v_rel2_m_s) > 0.5 * creep);
+    CHECK(r->x1_m != r->x2_m);
+    CHECK(r->end.tension_tight_N > r->end.tension_slack_N);
+    CHECK(!r->end.sheave_on_stop);
+  }
+  // A larger primary clamping against the same driven clamping pushes the
+  // chain outward on the driver: the geometric ratio r2/r1 falls (an
+  // upshift) against the run that holds 3.3 kN (docs/rom.md#wedging: the
+  // thrust ratio sets the ratio; the tension's level does not,
+  // docs/rom.md#tension-radial).
+  CHECK(step.ratio_at_step == held.ratio_at_step);
+  CHECK(step.end.geometric_ratio < held.end.geometric_ratio - 0.01);
+  CHECK(step.end.speed_ratio < held.end.speed_ratio - 0.01);
+}

@@ -26,6 +26,11 @@ struct RomOutputs {
   T creep_strain{};                        // dT / (kL + T_s)
   bool stick1 = false, stick2 = false;
   bool sheave_on_stop = false;             // tension: the driver sheave on its stop (or fixed), T_1 = T_stop
+  // Wedging (docs/rom.md#driven-clamping, #end-stop; else 0 and false): the
+  // driven clamping force F_ax2, and the chain pressed into a ratio end stop,
+  // at the driver's smallest radius (underdrive) or its largest (overdrive).
+  T driven_clamp_force_N{};
+  bool stop_underdrive = false, stop_overdrive = false;
 };
 
 }  // namespace cvt

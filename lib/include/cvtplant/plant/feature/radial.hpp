@@ -329,7 +329,7 @@ class RomRadial<Cfg, true> {
   }
   template <class A>
   A driven_radius_change_acc(const A* x) const {
-    return driven_radius_change(x[L::kRho], acc_.a1, acc_.a2, acc_.a3);
+    return cvt::driven_radius_change(x[L::kRho], acc_.a1, acc_.a2, acc_.a3);
   }
   template <class A>
   A stretch_acc(const A& v, const A& rho) const {
