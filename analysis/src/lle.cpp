@@ -156,60 +156,69 @@ void follow_pairs(const Prepared& p, const std::vector<std::size_t>& nn, LleResu
 
 }  // namespace
 
-// docs/analysis.md#rosenstein
-LleResult lle_rosenstein(const std::vector<double>& x, const LleOptions& opt) {
-  const Prepared p = prepare(x, opt, "lle");
+namespace {
+
+// A result that carries the embedding's window, horizon and size.
+LleResult result_of(const Prepared& p) {
   LleResult r;
   r.theiler = p.theiler;
   r.k_max = p.k_max;
   r.points = p.e.n;
-  const NeighbourIndex index(p.e, p.n_ref);
+  return r;
+}
+
+// docs/analysis.md#rosenstein, with each reference point's nearest
+// neighbour outside the Theiler window found by nearest(p, nn) (none:
+// the largest size_t).
+template <class Nearest>
+LleResult rosenstein(const std::vector<double>& x, const LleOptions& opt, Nearest&& nearest) {
+  const Prepared p = prepare(x, opt, "lle");
+  LleResult r = result_of(p);
   std::vector<std::size_t> nn(p.n_ref, std::numeric_limits<std::size_t>::max());
-  std::size_t found = 0;
-  for (std::size_t i = 0; i < p.n_ref; ++i) {
-    std::size_t j;
-    double d;
-    if (index.nearest(i, p.theiler, j, d) && d > 0) {
-      nn[i] = j;
-      ++found;
-    }
-  }
-  if (found < 10) throw InputError("lle: fewer than 10 neighbour pairs outside the Theiler window");
+  nearest(p, nn);
   follow_pairs(p, nn, r);
   r.fit = fit_scaling_region(r.divergence, opt.dt);
   return r;
 }
 
-LleResult lle_rosenstein_naive(const std::vector<double>& x, const LleOptions& opt) {
-  const Prepared p = prepare(x, opt, "lle");
-  LleResult r;
-  r.theiler = p.theiler;
-  r.k_max = p.k_max;
-  r.points = p.e.n;
-  std::vector<std::size_t> nn(p.n_ref, std::numeric_limits<std::size_t>::max());
-  for (std::size_t i = 0; i < p.n_ref; ++i) {
-    double best = std::numeric_limits<double>::max();
-    for (std::size_t j = 0; j < p.n_ref; ++j) {
-      if (std::labs(static_cast<long>(i) - static_cast<long>(j)) <= p.theiler) continue;
-      const double d = euclid(p.e.row(i), p.e.row(j), p.e.m);
-      if (d > 0 && d < best) {
-        best = d;
+}  // namespace
+
+LleResult lle_rosenstein(const std::vector<double>& x, const LleOptions& opt) {
+  return rosenstein(x, opt, [](const Prepared& p, std::vector<std::size_t>& nn) {
+    const NeighbourIndex index(p.e, p.n_ref);
+    std::size_t found = 0;
+    for (std::size_t i = 0; i < p.n_ref; ++i) {
+      std::size_t j;
+      double d;
+      if (index.nearest(i, p.theiler, j, d) && d > 0) {
         nn[i] = j;
+        ++found;
       }
     }
-  }
-  follow_pairs(p, nn, r);
-  r.fit = fit_scaling_region(r.divergence, opt.dt);
-  return r;
+    if (found < 10) throw InputError("lle: fewer than 10 neighbour pairs outside the Theiler window");
+  });
+}
+
+LleResult lle_rosenstein_naive(const std::vector<double>& x, const LleOptions& opt) {
+  return rosenstein(x, opt, [](const Prepared& p, std::vector<std::size_t>& nn) {
+    for (std::size_t i = 0; i < p.n_ref; ++i) {
+      double best = std::numeric_limits<double>::max();
+      for (std::size_t j = 0; j < p.n_ref; ++j) {
+        if (std::labs(static_cast<long>(i) - static_cast<long>(j)) <= p.theiler) continue;
+        const double d = euclid(p.e.row(i), p.e.row(j), p.e.m);
+        if (d > 0 && d < best) {
+          best = d;
+          nn[i] = j;
+        }
+      }
+    }
+  });
 }
 
 // docs/analysis.md#kantz: S(k) = < ln( mean_{j in U_i} ||y_{i+k} - y_{j+k}|| ) >_i
 LleResult lle_kantz(const std::vector<double>& x, const LleOptions& opt) {
   const Prepared p = prepare(x, opt, "lle-kantz");
-  LleResult r;
-  r.theiler = p.theiler;
-  r.k_max = p.k_max;
-  r.points = p.e.n;
+  LleResult r = result_of(p);
   const NeighbourIndex index(p.e, p.n_ref);
   const std::size_t n_refs = std::min<std::size_t>(p.n_ref, static_cast<std::size_t>(std::max(10, opt.max_refs)));
   const double stride = static_cast<double>(p.n_ref) / static_cast<double>(n_refs);

@@ -1,12 +1,18 @@
 // The reduced-order CVT plant in the analysis toolkit (docs/analysis.md#rom-scenes).
-// The spectrum and trajectory templates are in rom_scenes_flow.hpp.
+// The spectrum and trajectory templates are declared in rom_scenes_detail.hpp
+// and instantiated per state count in rom_spectrum_<k>.cpp.
 #include "cvtplant/analysis/rom_scenes.hpp"
 
 #include <cstdio>
+#include <stdexcept>
 #include <type_traits>
+#include <utility>
 
+#include "cvtplant/analysis/errors.hpp"
+#include "cvtplant/plant/rom_signals.hpp"
 #include "cvtplant/scene/builtin_scenes.hpp"
-#include "rom_scenes_flow.hpp"
+#include "cvtplant/scene/scene_runner.hpp"
+#include "rom_scenes_detail.hpp"
 
 namespace cvt::analysis {
 namespace rom_detail {
@@ -39,34 +45,26 @@ namespace {
 
 using namespace rom_detail;
 
-struct SignalDef {
-  const char* name;
-  double Outputs::*member;
-  const char* unit;  // as validate's rows name units; "-" for a ratio
-};
-constexpr SignalDef kSignals[] = {
-    {"F_ax", &Outputs::clamp_force_N, "N"},       {"torque_transmitted", &Outputs::torque_transmitted_Nm, "N m"},
-    {"slip", &Outputs::slip, "-"},                  {"v_rel1", &Outputs::v_rel1_m_s, "m/s"},
-    {"v_rel2", &Outputs::v_rel2_m_s, "m/s"},      {"F1", &Outputs::friction1_N, "N"},
-    {"F2", &Outputs::friction2_N, "N"},           {"omega1", &Outputs::omega1_rad_s, "rad/s"},
-    {"omega2", &Outputs::omega2_rad_s, "rad/s"},  {"speed_ratio", &Outputs::speed_ratio, "-"},
-};
-
-// fn(std::integral_constant<int, N>) for a plant of n states: the spectrum
-// code works on fixed-size Eigen types (the same kernels, and so the same
-// bits, as for the reference systems).
-template <class Fn>
-auto with_state_count(int n, Fn&& fn) {
-  switch (n) {
-    case 6: return fn(std::integral_constant<int, 6>{});
-    case 7: return fn(std::integral_constant<int, 7>{});
-    case 9: return fn(std::integral_constant<int, 9>{});
-    case 10: return fn(std::integral_constant<int, 10>{});
-    case 11: return fn(std::integral_constant<int, 11>{});
-    case 12: return fn(std::integral_constant<int, 12>{});
-    default: break;
+// fn(std::integral_constant<int, N>) for a plant of n states, N one of
+// kRomStateCounts: the spectrum code works on fixed-size Eigen types (the
+// same kernels, and so the same bits, as for the reference systems).
+template <class Fn, std::size_t... K>
+auto with_state_count(int n, Fn&& fn, std::index_sequence<K...>) {
+  using R = decltype(fn(std::integral_constant<int, kRomStateCounts[0]>{}));
+  if constexpr (std::is_void_v<R>) {
+    if (((n == kRomStateCounts[K] ? (fn(std::integral_constant<int, kRomStateCounts[K]>{}), true) : false) || ...))
+      return;
+  } else {
+    R out{};
+    if (((n == kRomStateCounts[K] ? (out = fn(std::integral_constant<int, kRomStateCounts[K]>{}), true) : false) ||
+         ...))
+      return out;
   }
   throw std::logic_error("no plant has " + std::to_string(n) + " states");
+}
+template <class Fn>
+auto with_state_count(int n, Fn&& fn) {
+  return with_state_count(n, std::forward<Fn>(fn), std::make_index_sequence<kRomStateCounts.size()>{});
 }
 
 // Model parameters that `--param` may change: the three constant inputs and mu0.
@@ -78,24 +76,27 @@ Params rom_params_of(const cvt::Scene& s) {
 }
 }  // namespace
 
-// The core states every plant has (rom_layout.hpp), sampled in SI units.
-constexpr const char* kStateSignals[] = {"x1", "xd1", "x2", "xd2"};
-constexpr const char* kStateSignalUnits[] = {"m", "m/s", "m", "m/s"};
+// The core states every plant has (rom_layout.hpp), sampled in SI units:
+// the lumps' positions and speeds, which are states, not output signals.
 constexpr int kStateSignalIndex[] = {2, 3, 4, 5};
+constexpr const char* kStateSignalUnits[] = {"m", "m/s", "m", "m/s"};
+const char* state_signal_name(int k) { return cvt::rom_state_name(0, kStateSignalIndex[k]); }
+
+// The plant's signal of a name (plant/rom_signals.hpp), or RomSignal::count.
+cvt::RomSignal output_signal(const std::string& name) { return cvt::rom_signal_by_name(name.c_str()); }
 
 std::string rom_signal_unit(const std::string& name) {
-  for (const auto& d : kSignals)
-    if (name == d.name) return d.unit;
+  if (const cvt::RomSignal s = output_signal(name); s != cvt::RomSignal::count) return cvt::rom_signal_info(s).unit;
   for (int k = 0; k < 4; ++k)
-    if (name == kStateSignals[k]) return kStateSignalUnits[k];
+    if (name == state_signal_name(k)) return kStateSignalUnits[k];
   throw InputError("unknown signal '" + name + "'");
 }
 
 const std::vector<std::string>& rom_signal_names() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> v;
-    for (const auto& d : kSignals) v.push_back(d.name);
-    for (const char* n : kStateSignals) v.push_back(n);
+    for (const auto& d : cvt::kRomSignals) v.push_back(d.name);
+    for (int k = 0; k < 4; ++k) v.push_back(state_signal_name(k));
     return v;
   }();
   return names;
@@ -105,21 +106,19 @@ RomSeries rom_scene_series(const cvt::Scene& scene, const std::string& name, con
                            double t_end, const ProgressFn& progress) {
   cvt::Scene s = scene;
   if (t_end > 0) s.t_end_s = t_end;
-  std::vector<const SignalDef*> defs;
-  std::vector<std::pair<std::string, int>> states;  // name, state index
+  std::vector<std::pair<std::string, cvt::RomSignal>> outputs;  // name, signal
+  std::vector<std::pair<std::string, int>> states;             // name, state index
   for (const auto& sig : signals) {
-    const SignalDef* d = nullptr;
-    for (const auto& k : kSignals)
-      if (sig == k.name) d = &k;
+    const cvt::RomSignal out = output_signal(sig);
     int state = -1;
     for (int k = 0; k < 4; ++k)
-      if (sig == kStateSignals[k]) state = kStateSignalIndex[k];
-    if (d == nullptr && state < 0) {
+      if (sig == state_signal_name(k)) state = kStateSignalIndex[k];
+    if (out == cvt::RomSignal::count && state < 0) {
       std::string known;
       for (const auto& k : rom_signal_names()) known += (known.empty() ? "" : ", ") + k;
       throw InputError("unknown signal '" + sig + "' (known: " + known + ")");
     }
-    if (d != nullptr) defs.push_back(d);
+    if (out != cvt::RomSignal::count) outputs.emplace_back(sig, out);
     else states.emplace_back(sig, state);
   }
   RomSeries r;
@@ -131,7 +130,7 @@ RomSeries rom_scene_series(const cvt::Scene& scene, const std::string& name, con
     if ((i & 1023) == 0 && progress) progress(t, s.t_end_s);
     const Outputs o = sim.outputs();
     r.t.push_back(t);
-    for (const SignalDef* d : defs) r.signal[d->name].push_back(o.*(d->member));
+    for (const auto& [n, id] : outputs) r.signal[n].push_back(cvt::rom_signal(o, sim.energy(), id));
     if (!states.empty()) {
       double xs[cvt::kRomMaxStates];
       sim.state_si(xs);

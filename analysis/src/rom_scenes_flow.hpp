@@ -1,8 +1,8 @@
 #pragma once
 // The ROM plant's spectrum and trajectory for a plant of N states
-// (docs/analysis.md#rom-lyapunov), shared by rom_scenes.cpp and the
-// rom_spectrum_<N>.cpp files that instantiate them: one translation unit per
-// state count, so that a build compiles them in parallel.
+// (docs/analysis.md#rom-lyapunov), the definitions of the templates that
+// rom_scenes_detail.hpp declares, for the rom_spectrum_<k>.cpp files that
+// instantiate them, one state count each.
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
@@ -19,18 +19,9 @@
 #include "cvtplant/scene/all_plants.hpp"
 #include "cvtplant/scene/scene.hpp"
 #include "cvtplant/scene/scene_runner.hpp"
+#include "rom_scenes_detail.hpp"
 
 namespace cvt::analysis::rom_detail {
-
-using Outputs = cvt::RomOutputs<double>;
-using Sim = cvt::IRomSimulator<double>;
-using Holder = cvt::SceneSimulator<cvt::AllRomPlants<double>>;
-
-// Builds the scene's plant (double) or throws InputError naming the problem.
-void load(Holder& h, const cvt::Scene& s, const std::string& name);
-// The scene with the model parameters of `p` (rom_params_of) applied.
-cvt::Scene apply(const cvt::Scene& base, const std::string& name, const Params& p);
-std::string fmt(const char* f, double a, double b = 0, double c = 0);
 
 // The plant as a Benettin flow of N states, watching the places where its
 // vector field is not smooth (docs/analysis.md#rom-lyapunov): the sign
@@ -210,27 +201,18 @@ std::vector<double> rom_trajectory(const cvt::Scene& base, const std::string& na
   return out;
 }
 
-// Explicit instantiation for one state count (rom_spectrum_<N>.cpp).
-#define CVT_ROM_SCENES_INSTANTIATE(N)                                                                           \
-  template SpectrumResult rom_spectrum<N>(const cvt::Scene&, const std::string&, const Params&,                \
-                                          const std::vector<double>&, const BenettinOptions&);                 \
-  template std::vector<double> rom_trajectory<N>(const cvt::Scene&, const std::string&, const Params&,         \
-                                                 const std::vector<double>&, double, double, double, double,       \
-                                                 const ProgressFn&);
+// Explicit instantiation for the k-th state count (rom_spectrum_<k>.cpp).
+#define CVT_ROM_SCENES_INSTANTIATE(k)                                                                           \
+  static_assert((k) < kRomStateCounts.size(), "no state count k");                                             \
+  template SpectrumResult rom_spectrum<kRomStateCounts[k]>(const cvt::Scene&, const std::string&, const Params&, \
+                                                           const std::vector<double>&, const BenettinOptions&); \
+  template std::vector<double> rom_trajectory<kRomStateCounts[k]>(                                              \
+      const cvt::Scene&, const std::string&, const Params&, const std::vector<double>&, double, double, double,  \
+      double, const ProgressFn&);
 
-// The state counts of the plants (AllRomPlants), each compiled in its own file.
-#define CVT_ROM_SCENES_EXTERN(N)                                                                                \
-  extern template SpectrumResult rom_spectrum<N>(const cvt::Scene&, const std::string&, const Params&,         \
-                                                 const std::vector<double>&, const BenettinOptions&);          \
-  extern template std::vector<double> rom_trajectory<N>(const cvt::Scene&, const std::string&, const Params&,  \
-                                                        const std::vector<double>&, double, double, double, double, \
-                                                        const ProgressFn&);
-CVT_ROM_SCENES_EXTERN(6)
-CVT_ROM_SCENES_EXTERN(7)
-CVT_ROM_SCENES_EXTERN(9)
-CVT_ROM_SCENES_EXTERN(10)
-CVT_ROM_SCENES_EXTERN(11)
-CVT_ROM_SCENES_EXTERN(12)
-#undef CVT_ROM_SCENES_EXTERN
+// One rom_spectrum_<k>.cpp per state count: a new count (a feature with
+// states of its own) needs a file of its own, else its spectrum would not
+// link.
+static_assert(kRomStateCounts.size() == 6, "add rom_spectrum_<k>.cpp for the new state count");
 
 }  // namespace cvt::analysis::rom_detail

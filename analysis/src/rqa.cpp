@@ -363,6 +363,28 @@ class Grid {
   std::size_t n_near_ = 0;
 };
 
+// From a histogram of line lengths (index: length): the recurrent points it
+// counts, those on lines of at least min_length, the number of such lines
+// and the longest: DET, L and Lmax from the diagonals, LAM, TT and Vmax
+// from the verticals (docs/analysis.md#rqa).
+struct LineCounts {
+  double all = 0, on_lines = 0, lines = 0;
+  long longest = 0;
+};
+LineCounts line_counts(const std::vector<std::uint64_t>& hist, int min_length) {
+  LineCounts c;
+  for (std::size_t l = 1; l < hist.size(); ++l) {
+    const double n = static_cast<double>(hist[l]);
+    c.all += n * l;
+    if (static_cast<int>(l) >= min_length && n > 0) {
+      c.on_lines += n * l;
+      c.lines += n;
+      c.longest = static_cast<long>(l);
+    }
+  }
+  return c;
+}
+
 RqaResult finish(const Histograms& hist, std::uint64_t rec_upper, const Embedding& e, const RqaOptions& opt, double eps,
                  int w) {
   RqaResult r;
@@ -378,35 +400,19 @@ RqaResult finish(const Histograms& hist, std::uint64_t rec_upper, const Embeddin
   r.recurrences = 2 * rec_upper;
   r.rr = upper > 0 ? static_cast<double>(rec_upper) / static_cast<double>(upper) : 0.0;
   // Diagonal measures on the upper triangle (identical to both triangles).
-  double all_pts = 0, line_pts = 0, lines = 0;
-  for (std::size_t l = 1; l < hist.diag.size(); ++l) {
-    const double c = static_cast<double>(hist.diag[l]);
-    all_pts += c * l;
-    if (static_cast<int>(l) >= opt.lmin && c > 0) {
-      line_pts += c * l;
-      lines += c;
-      r.lmax = static_cast<long>(l);
-    }
-  }
-  r.det = all_pts > 0 ? line_pts / all_pts : 0;
-  r.l_mean = lines > 0 ? line_pts / lines : 0;
+  const LineCounts d = line_counts(hist.diag, opt.lmin);
+  r.lmax = d.longest;
+  r.det = d.all > 0 ? d.on_lines / d.all : 0;
+  r.l_mean = d.lines > 0 ? d.on_lines / d.lines : 0;
   for (std::size_t l = static_cast<std::size_t>(opt.lmin); l < hist.diag.size(); ++l) {
     if (hist.diag[l] == 0) continue;
-    const double p = static_cast<double>(hist.diag[l]) / lines;
+    const double p = static_cast<double>(hist.diag[l]) / d.lines;
     r.entr -= p * std::log(p);
   }
-  double v_all = 0, v_line = 0, v_lines = 0;
-  for (std::size_t v = 1; v < hist.vert.size(); ++v) {
-    const double c = static_cast<double>(hist.vert[v]);
-    v_all += c * v;
-    if (static_cast<int>(v) >= opt.vmin && c > 0) {
-      v_line += c * v;
-      v_lines += c;
-      r.vmax = static_cast<long>(v);
-    }
-  }
-  r.lam = v_all > 0 ? v_line / v_all : 0;
-  r.tt = v_lines > 0 ? v_line / v_lines : 0;
+  const LineCounts v = line_counts(hist.vert, opt.vmin);
+  r.vmax = v.longest;
+  r.lam = v.all > 0 ? v.on_lines / v.all : 0;
+  r.tt = v.lines > 0 ? v.on_lines / v.lines : 0;
   return r;
 }
 
@@ -448,18 +454,23 @@ RqaResult rqa(const Embedding& e, const RqaOptions& opt) {
   return finish(hist, rec_upper, e, opt, eps, w);
 }
 
-RqaResult rqa_kdtree(const Embedding& e, const RqaOptions& opt) {
+namespace {
+
+// The RQA of e with the recurrent points of each row i (j != i, outside the
+// Theiler window, within eps) given by within(i, eps, w, row): the two
+// neighbour searches below share every count.
+template <class Within>
+RqaResult rqa_rows(const Embedding& e, const RqaOptions& opt, Within&& within) {
   check(e, opt);
   const int w = opt.theiler;
   const double eps = opt.eps > 0 ? opt.eps : radius_for_rr(e, opt.target_rr, w);
-  const NeighbourIndex index(e);
   Histograms hist(e.n);
   LineCounter lc(e.n, hist);
   std::vector<std::uint32_t> row;
   std::uint64_t rec_upper = 0;
   for (std::size_t i = 0; i < e.n; ++i) {
     if ((i & 4095) == 0 && opt.progress) opt.progress(static_cast<double>(i), static_cast<double>(e.n));
-    index.within(i, eps, w, row);
+    within(i, eps, w, row);
     for (std::uint32_t j : row)
       if (j > i) {
         lc.diag_point(i, j);
@@ -471,29 +482,24 @@ RqaResult rqa_kdtree(const Embedding& e, const RqaOptions& opt) {
   return finish(hist, rec_upper, e, opt, eps, w);
 }
 
+}  // namespace
+
+RqaResult rqa_kdtree(const Embedding& e, const RqaOptions& opt) {
+  check(e, opt);  // before the index is built
+  const NeighbourIndex index(e);
+  return rqa_rows(e, opt, [&](std::size_t i, double eps, int w, std::vector<std::uint32_t>& row) {
+    index.within(i, eps, w, row);
+  });
+}
+
 RqaResult rqa_naive(const Embedding& e, const RqaOptions& opt) {
-  check(e, opt);
-  const int w = opt.theiler;
-  const double eps = opt.eps > 0 ? opt.eps : radius_for_rr(e, opt.target_rr, w);
-  Histograms hist(e.n);
-  LineCounter lc(e.n, hist);
-  std::vector<std::uint32_t> row;
-  std::uint64_t rec_upper = 0;
-  for (std::size_t i = 0; i < e.n; ++i) {
+  return rqa_rows(e, opt, [&](std::size_t i, double eps, int w, std::vector<std::uint32_t>& row) {
     row.clear();
     for (std::size_t j = 0; j < e.n; ++j) {
       if (std::labs(static_cast<long>(i) - static_cast<long>(j)) <= w) continue;
       if (euclid(e.row(i), e.row(j), e.m) <= eps) row.push_back(static_cast<std::uint32_t>(j));
     }
-    for (std::uint32_t j : row)
-      if (j > i) {
-        lc.diag_point(i, j);
-        ++rec_upper;
-      }
-    lc.row_runs(row);
-  }
-  lc.flush();
-  return finish(hist, rec_upper, e, opt, eps, w);
+  });
 }
 
 void write_recurrence_png(const Embedding& e, double eps, int theiler, const std::string& path, int max_pixels) {

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 
 #include "cvtplant/analysis/errors.hpp"
 #include "cvtplant/analysis/rom_scenes.hpp"
@@ -64,22 +66,17 @@ double get(const Params& p, const char* k) { return p.at(k); }
 
 Lorenz make_lorenz(const Params& p) {
   Lorenz s;
-  s.sigma = get(p, "sigma");
-  s.rho = get(p, "rho");
-  s.beta = get(p, "beta");
+  std::tie(s.sigma, s.rho, s.beta) = std::make_tuple(get(p, "sigma"), get(p, "rho"), get(p, "beta"));
   return s;
 }
 Rossler make_rossler(const Params& p) {
   Rossler s;
-  s.a = get(p, "a");
-  s.b = get(p, "b");
-  s.c = get(p, "c");
+  std::tie(s.a, s.b, s.c) = std::make_tuple(get(p, "a"), get(p, "b"), get(p, "c"));
   return s;
 }
 Henon make_henon(const Params& p) {
   Henon s;
-  s.a = get(p, "a");
-  s.b = get(p, "b");
+  std::tie(s.a, s.b) = std::make_tuple(get(p, "a"), get(p, "b"));
   return s;
 }
 Logistic make_logistic(const Params& p) {
@@ -129,120 +126,76 @@ StickSlipOscillator<double> make_oscillator(const Params& p, bool stribeck) {
   return StickSlipOscillator<double>(o);
 }
 
+// A model's description and the run that resolves it (dt, transient,
+// warm-up, accumulation; maps count iterations and ignore dt).
+Model described(const char* name, const char* description, std::vector<std::string> states,
+                std::vector<double> x0, Params params, double dt, double t_transient, double t_warmup,
+                double t_end) {
+  Model s;
+  s.name = name;
+  s.description = description;
+  s.dim = static_cast<int>(states.size());
+  s.state_names = std::move(states);
+  s.default_x0 = std::move(x0);
+  s.default_params = std::move(params);
+  s.defaults.dt = dt;
+  s.defaults.t_transient = t_transient;
+  s.defaults.t_warmup = t_warmup;
+  s.defaults.t_end = t_end;
+  return s;
+}
+
+// A flow of N states whose system make(p) builds from the named parameters.
+template <int N, class Make>
+Model flow_model(Model s, Make make) {
+  s.spectrum = [make](const Params& p, const std::vector<double>& x0, const BenettinOptions& o) {
+    return lyapunov_flow(make(p), to_vec<N>(x0), o);
+  };
+  s.trajectory_fn = [make](const Params& p, const std::vector<double>& x0, double dt, double a, double b, double c,
+                           const ProgressFn& pr) { return flow_trajectory(make(p), x0, dt, a, b, c, pr); };
+  return s;
+}
+
+// The same for a map of N states (times are iterations).
+template <int N, class Make>
+Model map_model(Model s, Make make) {
+  s.is_map = true;
+  s.spectrum = [make](const Params& p, const std::vector<double>& x0, const BenettinOptions& o) {
+    return lyapunov_map(make(p), to_vec<N>(x0), o);
+  };
+  s.trajectory_fn = [make](const Params& p, const std::vector<double>& x0, double, double a, double b, double,
+                           const ProgressFn& pr) { return map_trajectory(make(p), x0, a, b, pr); };
+  return s;
+}
+
 std::vector<Model>& table() {
   static std::vector<Model> t = [] {
     std::vector<Model> v;
-    {
-      Model s;
-      s.name = "lorenz";
-      s.description = "Lorenz (sigma=10, rho=28, beta=8/3)";
-      s.dim = 3;
-      s.state_names = {"x", "y", "z"};
-      s.default_x0 = {1, 1, 1};
-      s.default_params = {{"sigma", 10}, {"rho", 28}, {"beta", 8.0 / 3.0}};
-      s.defaults.dt = 0.005;
-      s.defaults.t_transient = 50;
-      s.defaults.t_warmup = 10;
-      s.defaults.t_end = 2000;
-      s.spectrum = [](const Params& p, const std::vector<double>& x0, const BenettinOptions& o) {
-        return lyapunov_flow(make_lorenz(p), to_vec<3>(x0), o);
-      };
-      s.trajectory_fn = [](const Params& p, const std::vector<double>& x0, double dt, double a, double b, double c,
-                           const ProgressFn& pr) {
-        return flow_trajectory(make_lorenz(p), x0, dt, a, b, c, pr);
-      };
-      v.push_back(s);
-    }
-    {
-      Model s;
-      s.name = "rossler";
-      s.description = "Roessler (a=b=0.2, c=5.7)";
-      s.dim = 3;
-      s.state_names = {"x", "y", "z"};
-      s.default_x0 = {1, 1, 0};
-      s.default_params = {{"a", 0.2}, {"b", 0.2}, {"c", 5.7}};
-      s.defaults.dt = 0.01;
-      s.defaults.t_transient = 200;
-      s.defaults.t_warmup = 50;
-      s.defaults.t_end = 20000;
-      s.spectrum = [](const Params& p, const std::vector<double>& x0, const BenettinOptions& o) {
-        return lyapunov_flow(make_rossler(p), to_vec<3>(x0), o);
-      };
-      s.trajectory_fn = [](const Params& p, const std::vector<double>& x0, double dt, double a, double b, double c,
-                           const ProgressFn& pr) {
-        return flow_trajectory(make_rossler(p), x0, dt, a, b, c, pr);
-      };
-      v.push_back(s);
-    }
-    for (int stribeck = 0; stribeck <= 1; ++stribeck) {
-      Model s;
-      s.name = stribeck ? "oscillator-stribeck" : "oscillator-coulomb";
-      s.description = stribeck ? "seed Eq. 9 2-DOF stick-slip oscillator, Stribeck friction (seed sec. 3)"
-                               : "seed Eq. 9 2-DOF stick-slip oscillator, constant (Coulomb) friction (seed sec. 3)";
-      s.dim = 4;
-      s.state_names = {"x1_m", "v1_m_s", "x2_m", "v2_m_s"};
-      s.default_x0 = {0, 3, 0, 6};
-      s.default_params = oscillator_params(stribeck != 0);
+    v.push_back(flow_model<3>(described("lorenz", "Lorenz (sigma=10, rho=28, beta=8/3)", {"x", "y", "z"}, {1, 1, 1},
+                                        {{"sigma", 10}, {"rho", 28}, {"beta", 8.0 / 3.0}}, 0.005, 50, 10, 2000),
+                              make_lorenz));
+    v.push_back(flow_model<3>(described("rossler", "Roessler (a=b=0.2, c=5.7)", {"x", "y", "z"}, {1, 1, 0},
+                                        {{"a", 0.2}, {"b", 0.2}, {"c", 5.7}}, 0.01, 200, 50, 20000),
+                              make_rossler));
+    for (const bool stribeck : {false, true}) {
       // Coulomb: the atan slope 2 mu0 g lambda / pi ~ 1.6e4 1/s near stick
       // limits RK4 to dt < 2.8/1.6e4 ~ 1.8e-4 there; Stribeck: mu(0) = 0 removes that stiffness
       // and dt = 1e-3 changes the exponents by < 1e-8 against dt/2
       // (docs/analysis.md#seed-oscillator).
-      s.defaults.dt = stribeck ? 1e-3 : 1e-4;
-      s.defaults.t_transient = stribeck ? 200 : 0;
-      s.defaults.t_warmup = 20;
-      s.defaults.t_end = stribeck ? 2000 : 200;
-      const bool sb = stribeck != 0;
-      s.spectrum = [sb](const Params& p, const std::vector<double>& x0, const BenettinOptions& o) {
-        return lyapunov_flow(make_oscillator(p, sb), to_vec<4>(x0), o);
-      };
-      s.trajectory_fn = [sb](const Params& p, const std::vector<double>& x0, double dt, double a, double b, double c,
-                             const ProgressFn& pr) {
-        return flow_trajectory(make_oscillator(p, sb), x0, dt, a, b, c, pr);
-      };
-      v.push_back(s);
+      const Model s = described(
+          stribeck ? "oscillator-stribeck" : "oscillator-coulomb",
+          stribeck ? "seed Eq. 9 2-DOF stick-slip oscillator, Stribeck friction (seed sec. 3)"
+                   : "seed Eq. 9 2-DOF stick-slip oscillator, constant (Coulomb) friction (seed sec. 3)",
+          {"x1_m", "v1_m_s", "x2_m", "v2_m_s"}, {0, 3, 0, 6}, oscillator_params(stribeck), stribeck ? 1e-3 : 1e-4,
+          stribeck ? 200 : 0, 20, stribeck ? 2000 : 200);
+      v.push_back(flow_model<4>(s, [stribeck](const Params& p) { return make_oscillator(p, stribeck); }));
     }
-    {
-      Model s;
-      s.name = "henon";
-      s.description = "Henon map (a=1.4, b=0.3); times are iterations";
-      s.is_map = true;
-      s.dim = 2;
-      s.state_names = {"x", "y"};
-      s.default_x0 = {0.1, 0.1};
-      s.default_params = {{"a", 1.4}, {"b", 0.3}};
-      s.defaults.t_transient = 1000;
-      s.defaults.t_warmup = 100;
-      s.defaults.t_end = 1000000;
-      s.spectrum = [](const Params& p, const std::vector<double>& x0, const BenettinOptions& o) {
-        return lyapunov_map(make_henon(p), to_vec<2>(x0), o);
-      };
-      s.trajectory_fn = [](const Params& p, const std::vector<double>& x0, double, double a, double b, double,
-                           const ProgressFn& pr) {
-        return map_trajectory(make_henon(p), x0, a, b, pr);
-      };
-      v.push_back(s);
-    }
-    {
-      Model s;
-      s.name = "logistic";
-      s.description = "logistic map x -> r x (1-x), r=4; times are iterations";
-      s.is_map = true;
-      s.dim = 1;
-      s.state_names = {"x"};
-      s.default_x0 = {0.3};
-      s.default_params = {{"r", 4}};
-      s.defaults.t_transient = 1000;
-      s.defaults.t_warmup = 100;
-      s.defaults.t_end = 1000000;
-      s.spectrum = [](const Params& p, const std::vector<double>& x0, const BenettinOptions& o) {
-        return lyapunov_map(make_logistic(p), to_vec<1>(x0), o);
-      };
-      s.trajectory_fn = [](const Params& p, const std::vector<double>& x0, double, double a, double b, double,
-                           const ProgressFn& pr) {
-        return map_trajectory(make_logistic(p), x0, a, b, pr);
-      };
-      v.push_back(s);
-    }
+    v.push_back(map_model<2>(described("henon", "Henon map (a=1.4, b=0.3); times are iterations", {"x", "y"},
+                                       {0.1, 0.1}, {{"a", 1.4}, {"b", 0.3}}, BenettinOptions{}.dt, 1000, 100, 1000000),
+                             make_henon));
+    v.push_back(map_model<1>(described("logistic", "logistic map x -> r x (1-x), r=4; times are iterations", {"x"},
+                                       {0.3}, {{"r", 4}}, BenettinOptions{}.dt, 1000, 100, 1000000),
+                             make_logistic));
     add_rom_models(v);
     return v;
   }();

@@ -1,16 +1,26 @@
 // Largest exponent from data (docs/analysis.md#lle).
 #include <doctest/doctest.h>
 
+#include <tuple>
+
 #include "cvtplant/analysis/lle.hpp"
 #include "signals.hpp"
 
 using namespace cvt::analysis;
 
-TEST_CASE("Rosenstein: Lorenz x gives 0.9056 within 10%") {
+namespace {
+
+// An embedding of dimension m, delay tau, samples dt apart.
+LleOptions embedding(int m, int tau, double dt = 1.0) {
   LleOptions o;
-  o.m = 5;
-  o.tau = 18;
-  o.dt = 0.01;
+  std::tie(o.m, o.tau, o.dt) = std::make_tuple(m, tau, dt);
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("Rosenstein: Lorenz x gives 0.9056 within 10%") {
+  LleOptions o = embedding(5, 18, 0.01);
   const LleResult r = lle_rosenstein(testsig::lorenz_x(20000), o);
   // Rosenstein et al. report ~2-5% bias for Lorenz at this N; 10% covers the
   // window choice as well.
@@ -21,9 +31,7 @@ TEST_CASE("Rosenstein: Lorenz x gives 0.9056 within 10%") {
 }
 
 TEST_CASE("Rosenstein and Kantz: Henon gives 0.419 within 10%") {
-  LleOptions o;
-  o.m = 2;
-  o.tau = 1;
+  LleOptions o = embedding(2, 1);
   o.k_max = 20;
   const auto x = testsig::henon_x(10000);
   const LleResult r = lle_rosenstein(x, o);
@@ -33,29 +41,21 @@ TEST_CASE("Rosenstein and Kantz: Henon gives 0.419 within 10%") {
 }
 
 TEST_CASE("Kantz: Lorenz within 15%") {
-  LleOptions o;
-  o.m = 5;
-  o.tau = 18;
-  o.dt = 0.01;
+  LleOptions o = embedding(5, 18, 0.01);
   const LleResult r = lle_kantz(testsig::lorenz_x(20000), o);
   CHECK(std::abs(r.fit.slope - 0.9056) < 0.14);
   CHECK(r.mean_neighbours >= 3);
 }
 
 TEST_CASE("Rosenstein: a sine has no scaling region and a ~0 slope") {
-  LleOptions o;
-  o.m = 3;
-  o.tau = 8;
+  LleOptions o = embedding(3, 8);
   const LleResult r = lle_rosenstein(testsig::sine(5000, 37.3), o);
   CHECK_FALSE(r.fit.scaling_region);
   CHECK(std::abs(r.fit.slope) < 0.005);  // per sample; the period is 37 samples
 }
 
 TEST_CASE("k-d tree Rosenstein equals the brute-force reference") {
-  LleOptions o;
-  o.m = 3;
-  o.tau = 18;
-  o.dt = 0.01;
+  LleOptions o = embedding(3, 18, 0.01);
   const auto x = testsig::lorenz_x(3000);
   const LleResult a = lle_rosenstein(x, o), b = lle_rosenstein_naive(x, o);
   REQUIRE(a.divergence.size() == b.divergence.size());

@@ -3,17 +3,26 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <tuple>
 
 #include "cvtplant/analysis/lyapunov.hpp"
 #include "cvtplant/analysis/systems.hpp"
 
 using namespace cvt::analysis;
 
-TEST_CASE("logistic map r=4: lambda = ln 2") {
+namespace {
+
+// The run of a spectrum: step (flows), transient, warm-up, accumulation.
+BenettinOptions run(double dt, double t_transient, double t_warmup, double t_end) {
   BenettinOptions o;
-  o.t_transient = 1000;
-  o.t_warmup = 10;
-  o.t_end = 1e6;
+  std::tie(o.dt, o.t_transient, o.t_warmup, o.t_end) = std::make_tuple(dt, t_transient, t_warmup, t_end);
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("logistic map r=4: lambda = ln 2") {
+  const BenettinOptions o = run(BenettinOptions{}.dt, 1000, 10, 1e6);
   const SpectrumResult r = lyapunov_map(Logistic{}, Eigen::Matrix<double, 1, 1>(0.3), o);
   // 1e6 iterations: batch-means CI is ~2e-3; 5e-3 allows 2.5 CI.
   CHECK(std::abs(r.exponents[0] - std::log(2.0)) < 5e-3);
@@ -23,10 +32,7 @@ TEST_CASE("logistic map r=4: lambda = ln 2") {
 }
 
 TEST_CASE("Henon map: (0.41922, -1.62319), sum = ln b") {
-  BenettinOptions o;
-  o.t_transient = 1000;
-  o.t_warmup = 100;
-  o.t_end = 1e6;
+  const BenettinOptions o = run(BenettinOptions{}.dt, 1000, 100, 1e6);
   const SpectrumResult r = lyapunov_map(Henon{}, Eigen::Vector2d(0.1, 0.1), o);
   // Published to 5 digits; 1e6 iterations give a CI of ~1e-3.
   CHECK(std::abs(r.exponents[0] - 0.41922) < 3e-3);
@@ -37,11 +43,7 @@ TEST_CASE("Henon map: (0.41922, -1.62319), sum = ln b") {
 }
 
 TEST_CASE("Lorenz: (0.9056, 0, -14.5723), sum = -(sigma+1+beta)") {
-  BenettinOptions o;
-  o.dt = 0.005;
-  o.t_transient = 50;
-  o.t_warmup = 10;
-  o.t_end = 2000;
+  const BenettinOptions o = run(0.005, 50, 10, 2000);
   const SpectrumResult r = lyapunov_flow(Lorenz{}, Eigen::Vector3d(1, 1, 1), o);
   // T = 2000: the finite-time fluctuation of lambda_1 is ~0.01 (the CI); 0.03 is 3 CI.
   CHECK(std::abs(r.exponents[0] - 0.9056) < 0.03);
@@ -57,11 +59,7 @@ TEST_CASE("Lorenz: (0.9056, 0, -14.5723), sum = -(sigma+1+beta)") {
 }
 
 TEST_CASE("Roessler: (0.0714, 0, -5.3943)") {
-  BenettinOptions o;
-  o.dt = 0.01;
-  o.t_transient = 200;
-  o.t_warmup = 50;
-  o.t_end = 20000;
+  const BenettinOptions o = run(0.01, 200, 50, 20000);
   const SpectrumResult r = lyapunov_flow(Rossler{}, Eigen::Vector3d(1, 1, 0), o);
   // T = 2e4 (about 3300 orbits): CI ~ 2e-3 on lambda_1; 6e-3 tolerance is ~3 CI.
   CHECK(std::abs(r.exponents[0] - 0.0714) < 6e-3);
@@ -71,14 +69,8 @@ TEST_CASE("Roessler: (0.0714, 0, -5.3943)") {
 }
 
 TEST_CASE("Lorenz spectrum converges as dt halves (RK4)") {
-  BenettinOptions o;
-  o.t_transient = 20;
-  o.t_warmup = 5;
-  o.t_end = 100;
-  o.dt = 0.01;
-  const SpectrumResult a = lyapunov_flow(Lorenz{}, Eigen::Vector3d(1, 1, 1), o);
-  o.dt = 0.005;
-  const SpectrumResult b = lyapunov_flow(Lorenz{}, Eigen::Vector3d(1, 1, 1), o);
+  const SpectrumResult a = lyapunov_flow(Lorenz{}, Eigen::Vector3d(1, 1, 1), run(0.01, 20, 5, 100));
+  const SpectrumResult b = lyapunov_flow(Lorenz{}, Eigen::Vector3d(1, 1, 1), run(0.005, 20, 5, 100));
   // Same (finite) time: the trajectories decorrelate by t=100 so only the
   // trace, a smooth functional, is compared tightly.
   CHECK(std::abs(a.sum - b.sum) < 1e-3);

@@ -1,52 +1,27 @@
 // `cvtplant analyze <tool>`: nonlinear time-series analysis of one CSV column
 // (docs/analysis.md): ami, fnn, cao, lle, rqa, recurrence, test01, classify;
-// plus sweep / merge / figures / trajectory for scene studies.
+// plus sweep / merge / figures / trajectory / seed-section4 / ripple for
+// scene studies. This file registers the tools and holds what the series
+// tools share; each tool is one function (cmd_analyze.hpp).
+#include "cmd_analyze.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <memory>
-#include <sstream>
-#include <stdexcept>
 
-#include "commands.hpp"
-#include "cvtplant/analysis/classify.hpp"
-#include "cvtplant/analysis/csv.hpp"
-#include "cvtplant/analysis/csv_writer.hpp"
+#include "guarded.hpp"
+#include "io_util.hpp"
+#include "registry.hpp"
 #include "cvtplant/analysis/embedding.hpp"
 #include "cvtplant/analysis/errors.hpp"
-#include "cvtplant/analysis/figures.hpp"
-#include "cvtplant/analysis/lle.hpp"
-#include "cvtplant/analysis/ripple.hpp"
-#include "cvtplant/analysis/rom_scenes.hpp"
-#include "cvtplant/analysis/rqa.hpp"
-#include "cvtplant/analysis/section4.hpp"
 #include "cvtplant/analysis/series.hpp"
-#include "cvtplant/analysis/sweep.hpp"
-#include "cvtplant/analysis/systems.hpp"
 #include "cvtplant/analysis/test01.hpp"
-#include "io_util.hpp"
-#include "options.hpp"
-#include "progress.hpp"
-#include "model_resolve.hpp"
-#include "registry.hpp"
-#include "scene_file.hpp"
-#include "cvtplant/scene/builtin_scenes.hpp"
 
-namespace {
+namespace cvtcli::analyze {
 
 using namespace cvt::analysis;
 using nlohmann::json;
-
-// Options shared by every series tool.
-struct SeriesArgs {
-  std::string csv, column;
-  double dt = 1.0;
-  long discard = 0;
-  bool json = false;
-  int tau = -1, m = -1, theiler = -1;
-  cvtcli::Caps caps;
-};
 
 void add_series_options(CLI::App* c, SeriesArgs& a, bool embedding) {
   c->add_option("--csv", a.csv, "input CSV with a header row")->required();
@@ -60,11 +35,9 @@ void add_series_options(CLI::App* c, SeriesArgs& a, bool embedding) {
     cvtcli::add_int(c, "--theiler", a.theiler, 0, 1000000000,
                     "Theiler window w [samples], pairs |i-j| <= w excluded (default: mean period)");
   }
-  cvtcli::add_caps(c, a.caps, false, true);
+  add_caps(c, a.caps, false, true);
 }
 
-// The column of a CSV, read with the memory cap (the file stops being read
-// once it exceeds --max-memory-mb: an endless stream such as /dev/zero ends).
 CsvColumn read_column(const std::string& path, const std::string& column, const cvtcli::Caps& caps) {
   try {
     return read_csv_column(path, column, cvtcli::memory_cap_bytes(caps));
@@ -73,14 +46,6 @@ CsvColumn read_column(const std::string& path, const std::string& column, const 
   }
 }
 
-// Bytes per sample the series tools hold at their peak: the column, its
-// trimmed and z-scored copies, and the delay embedding and neighbour search
-// of up to --m-max = 30 dimensions (measured peak RSS per sample in
-// docs/cli.md#caps: 165 B at the default dimensions, 330 B at m = 30).
-constexpr double kSeriesBytesPerSample = 512;
-
-// Loads, trims and z-scores the column (docs/analysis.md#input). Every
-// analysis works on the normalised series, as the seed does.
 std::vector<double> load(const SeriesArgs& a, std::size_t min_points) {
   if (!(a.dt > 0) || !std::isfinite(a.dt)) throw cvtcli::UsageError{"--dt must be a positive number"};
   if (a.discard < 0) throw cvtcli::UsageError{"--discard must be >= 0"};
@@ -113,11 +78,15 @@ int pick_m(const SeriesArgs& a, const std::vector<double>& x, int tau, int w) {
   return std::max(2, false_nearest_neighbours(x, fo).dimension);
 }
 
+namespace {
+
 json fit_json(const ScalingFit& f) {
   return {{"slope", f.slope},          {"ci95", f.ci95},         {"slope_se", f.slope_se},
           {"window_spread", f.window_spread}, {"r2", f.r2},      {"k_begin", f.k_begin},
           {"k_end", f.k_end},          {"growth_efolds", f.growth_efolds}, {"scaling_region", f.scaling_region}};
 }
+}  // namespace
+
 json lle_json(const LleResult& r, const char* method, int m, int tau) {
   return {{"method", method}, {"lambda", r.fit.slope}, {"ci95", r.fit.ci95}, {"fit", fit_json(r.fit)},
           {"m", m},           {"tau", tau},            {"theiler", r.theiler}, {"k_max", r.k_max},
@@ -131,8 +100,7 @@ json rqa_json(const RqaResult& r, int m, int tau, const RqaOptions& o) {
           {"rule", "||y_i - y_j||_2 <= eps on the z-scored series; pairs |i-j| <= theiler excluded (line of identity never counted)"}};
 }
 
-// `classify --json` fields (docs/analysis.md#cli); the estimators are present
-// whenever classify ran them (tau > 0).
+// The estimators are present whenever classify ran them (tau > 0).
 json classification_json(const Classification& r) {
   json j{{"classification", r.classification}, {"confidence", r.confidence}, {"evidence", r.reasons}};
   if (r.classification != "fixed_point" || r.tau > 0) {
@@ -153,680 +121,26 @@ json classification_json(const Classification& r) {
   return j;
 }
 
-// `analyze seed-section4`: one signal's summary (docs/analysis.md#seed-section4).
-// `unit`: the signal's, named beside its statistics (docs/cli.md#json-output).
-json section4_json(const Section4Result& r, const std::string& unit) {
-  json j{{"signal", r.label},
-         {"points", r.points},
-         {"constant", r.constant},
-         {"stats",
-          {{"unit", unit}, {"mean", r.mean}, {"std", r.stddev}, {"min", r.min}, {"max", r.max},
-           {"peak_to_peak", r.max - r.min}}},
-         {"classification", r.classification},
-         {"confidence", r.confidence},
-         {"evidence", r.evidence},
-         {"figures", r.figures}};
-  if (r.constant) return j;
-  const Classification& c = r.verdict;
-  json v = classification_json(c);
-  for (const char* k : {"tau", "m", "theiler", "deterministic", "test01", "spectrum", "amplitude_decay"}) j[k] = v[k];
-  j["tau_method"] = c.ami.method;
-  j["tau_ami_first_minimum"] = c.ami.tau_ami;
-  j["fnn"] = {{"m", c.fnn.m}, {"fraction", c.fnn.fraction}, {"dimension", c.fnn.dimension}, {"reached", c.fnn.reached},
-              {"rtol", 10.0}, {"atol", 2.0}};
-  j["cao"] = {{"m", r.cao.m}, {"E1", r.cao.e1}, {"E2", r.cao.e2}, {"dimension", r.cao.dimension}, {"reached", r.cao.reached}};
-  j["lle"] = {{"rosenstein", lle_json(c.lle, "rosenstein", c.m, c.tau)},
-              {"kantz", r.kantz_error.empty() ? lle_json(r.kantz, "kantz", c.m, c.tau) : json{{"error", r.kantz_error}}}};
-  j["rqa"] = rqa_json(c.rqa, c.m, c.tau, c.rqa_options);
-  return j;
-}
+}  // namespace cvtcli::analyze
 
-// Runs a body, turning library errors into the CLI's exit codes.
-template <class F>
-int guarded(F&& f) {
-  try {
-    return f();
-  } catch (const InputError& e) {
-    throw cvtcli::UsageError{e.what()};
-  } catch (const std::invalid_argument& e) {
-    throw cvtcli::UsageError{e.what()};
-  } catch (const std::runtime_error& e) {
-    throw cvtcli::RunError{e.what()};
-  }
-}
+namespace {
 
 cvtcli::Action register_analyze(CLI::App& app) {
+  using namespace cvtcli::analyze;
   auto* an = app.add_subcommand("analyze", "nonlinear time-series analysis of a CSV column, sweeps and figures");
   an->require_subcommand(1);
-  std::vector<std::pair<CLI::App*, std::function<int()>>> tools;
-
-  {  // ami
-    auto a = std::make_shared<SeriesArgs>();
-    auto lag = std::make_shared<int>(-1);
-    auto bins = std::make_shared<int>(0);
-    auto* c = an->add_subcommand("ami", "average mutual information and autocorrelation; delay choice");
-    add_series_options(c, *a, false);
-    cvtcli::add_int(c, "--max-lag", *lag, 1, 100000, "largest lag [samples] (default min(N/10, 500))");
-    cvtcli::add_int(c, "--bins", *bins, 2, 4096, "histogram bins (default cbrt(N) clamped to 8..64)");
-    tools.push_back({c, [a, lag, bins] {
-                       const auto x = load(*a, 50);
-                       const int L = *lag > 0 ? *lag : std::min<int>(static_cast<int>(x.size() / 10), 500);
-                       const AmiResult r = average_mutual_information(x, L, *bins);
-                       json j{{"tau", r.tau}, {"method", r.method}, {"tau_ami_first_minimum", r.tau_ami},
-                              {"tau_acf_zero", r.tau_acf_zero}, {"bins", r.bins}, {"ami", r.ami}, {"acf", r.acf}};
-                       if (a->json)
-                         cvtcli::print_json(j);
-                       else
-                         std::printf("tau = %d (%s); first AMI minimum %d, first ACF zero %d\n", r.tau, r.method,
-                                     r.tau_ami, r.tau_acf_zero);
-                       return 0;
-                     }});
-  }
-  {  // fnn
-    auto a = std::make_shared<SeriesArgs>();
-    auto o = std::make_shared<FnnOptions>();
-    auto* c = an->add_subcommand("fnn", "false nearest neighbours (Kennel: Rtol=10, Atol=2)");
-    add_series_options(c, *a, true);
-    cvtcli::add_int(c, "--m-max", o->m_max, 1, 30, "largest dimension tested");
-    cvtcli::add_real(c, "--rtol", o->rtol, {0, 1e6, true}, "Kennel criterion 1 threshold");
-    cvtcli::add_real(c, "--atol", o->atol, {0, 1e6, true}, "Kennel criterion 2 threshold");
-    cvtcli::add_real(c, "--threshold", o->threshold, {0, 1}, "dimension = first m with FNN fraction <= threshold");
-    tools.push_back({c, [a, o] {
-                       const auto x = load(*a, 100);
-                       FnnOptions fo = *o;
-                       fo.tau = pick_tau(*a, x);
-                       fo.theiler = pick_theiler(*a, x);
-                       if (fo.m_max < 1 || fo.m_max > 30) throw cvtcli::UsageError{"--m-max must be in 1..30"};
-                       const FnnResult r = false_nearest_neighbours(x, fo);
-                       json j{{"dimension", r.dimension}, {"reached", r.reached}, {"tau", fo.tau},
-                              {"theiler", r.theiler},     {"rtol", fo.rtol},      {"atol", fo.atol},
-                              {"threshold", fo.threshold}, {"m", r.m},            {"fraction", r.fraction},
-                              {"fraction_rtol", r.fraction_rtol}, {"fraction_atol", r.fraction_atol}};
-                       if (a->json) {
-                         cvtcli::print_json(j);
-                       } else {
-                         for (std::size_t i = 0; i < r.m.size(); ++i)
-                           std::printf("m=%2d  FNN %.4f (Rtol %.4f, Atol %.4f)\n", r.m[i], r.fraction[i],
-                                       r.fraction_rtol[i], r.fraction_atol[i]);
-                         std::printf("dimension %d%s (tau %d, Theiler %d)\n", r.dimension,
-                                     r.reached ? "" : " (threshold not reached)", fo.tau, r.theiler);
-                       }
-                       return 0;
-                     }});
-  }
-  {  // cao
-    auto a = std::make_shared<SeriesArgs>();
-    auto o = std::make_shared<CaoOptions>();
-    auto* c = an->add_subcommand("cao", "Cao's E1/E2 embedding dimension");
-    add_series_options(c, *a, true);
-    cvtcli::add_int(c, "--m-max", o->m_max, 1, 30, "largest dimension tested");
-    cvtcli::add_real(c, "--e1-threshold", o->e1_threshold, {0, 1, true}, "dimension = first m with E1(m) >= threshold");
-    tools.push_back({c, [a, o] {
-                       const auto x = load(*a, 100);
-                       CaoOptions co = *o;
-                       co.tau = pick_tau(*a, x);
-                       co.theiler = pick_theiler(*a, x);
-                       if (co.m_max < 1 || co.m_max > 30) throw cvtcli::UsageError{"--m-max must be in 1..30"};
-                       const CaoResult r = cao(x, co);
-                       json j{{"dimension", r.dimension}, {"reached", r.reached}, {"tau", co.tau}, {"theiler", r.theiler},
-                              {"m", r.m}, {"E1", r.e1}, {"E2", r.e2}};
-                       if (a->json) {
-                         cvtcli::print_json(j);
-                       } else {
-                         for (std::size_t i = 0; i < r.m.size(); ++i)
-                           std::printf("m=%2d  E1 %.4f  E2 %.4f\n", r.m[i], r.e1[i], r.e2[i]);
-                         std::printf("dimension %d\n", r.dimension);
-                       }
-                       return 0;
-                     }});
-  }
-  {  // lle
-    auto a = std::make_shared<SeriesArgs>();
-    auto method = std::make_shared<std::string>("rosenstein");
-    auto o = std::make_shared<LleOptions>();
-    auto* c = an->add_subcommand("lle", "largest Lyapunov exponent (Rosenstein or Kantz) with automatic scaling region");
-    add_series_options(c, *a, true);
-    c->add_option("--method", *method, "rosenstein | kantz | both")->check(CLI::IsMember({"rosenstein", "kantz", "both"}));
-    cvtcli::add_int(c, "--k-max", o->k_max, 1, 1000000, "divergence horizon [samples] (default 5 mean periods)");
-    cvtcli::add_real(c, "--eps", o->eps, {0, 1e3, true},
-                     "Kantz radius in std units (default: median 10th-neighbour distance)");
-    tools.push_back({c, [a, method, o] {
-                       const auto x = load(*a, 100);
-                       LleOptions lo = *o;
-                       lo.dt = a->dt;
-                       lo.tau = pick_tau(*a, x);
-                       lo.theiler = pick_theiler(*a, x);
-                       lo.m = pick_m(*a, x, lo.tau, lo.theiler);
-                       json j = json::object();
-                       if (*method != "kantz") j["rosenstein"] = lle_json(lle_rosenstein(x, lo), "rosenstein", lo.m, lo.tau);
-                       if (*method != "rosenstein") j["kantz"] = lle_json(lle_kantz(x, lo), "kantz", lo.m, lo.tau);
-                       if (a->json) {
-                         cvtcli::print_json(j);
-                       } else {
-                         for (auto& [k, v] : j.items())
-                           std::printf("%s: lambda = %.6g +- %.2g per unit time (m %d, tau %d, Theiler %d, fit samples "
-                                       "%d..%d, R^2 %.4f, scaling region %s)\n",
-                                       k.c_str(), v["lambda"].get<double>(), v["ci95"].get<double>(), lo.m, lo.tau,
-                                       v["theiler"].get<int>(), v["fit"]["k_begin"].get<int>(),
-                                       v["fit"]["k_end"].get<int>(), v["fit"]["r2"].get<double>(),
-                                       v["fit"]["scaling_region"].get<bool>() ? "yes" : "no");
-                       }
-                       return 0;
-                     }});
-  }
-  {  // rqa + recurrence
-    for (int png = 0; png <= 1; ++png) {
-      auto a = std::make_shared<SeriesArgs>();
-      auto o = std::make_shared<RqaOptions>();
-      auto path = std::make_shared<std::string>();
-      auto pixels = std::make_shared<int>(1000);
-      auto* c = png ? an->add_subcommand("recurrence", "recurrence plot as PNG (plus the RQA measures)")
-                    : an->add_subcommand("rqa", "recurrence quantification: RR DET L Lmax ENTR LAM TT (streaming)");
-      add_series_options(c, *a, true);
-      // Up to 1e3 std units: beyond, every pair recurs (RR = 1) and the
-      // streaming count becomes N^2 work for no information.
-      cvtcli::add_real(c, "--eps", o->eps, {0, 1e3, true}, "recurrence radius in std units of the series (default: from --rr)");
-      cvtcli::add_real(c, "--rr", o->target_rr, {0, 1, true, true}, "target recurrence rate when --eps is not given");
-      cvtcli::add_int(c, "--lmin", o->lmin, 1, 1000000, "minimal diagonal line");
-      cvtcli::add_int(c, "--vmin", o->vmin, 1, 1000000, "minimal vertical line");
-      if (png) {
-        c->add_option("--png", *path, "output PNG file")->required();
-        cvtcli::add_int(c, "--pixels", *pixels, 16, 8192, "image side in pixels (max)");
-      }
-      const bool is_png = png != 0;
-      tools.push_back({c, [a, o, path, pixels, is_png] {
-                         const auto x = load(*a, 100);
-                         const int tau = pick_tau(*a, x);
-                         const int w = a->theiler >= 0 ? a->theiler : 0;
-                         if (a->theiler < -1) throw cvtcli::UsageError{"--theiler must be >= 0"};
-                         const int m = pick_m(*a, x, tau, pick_theiler(*a, x));
-                         RqaOptions ro = *o;
-                         ro.theiler = w;
-                         const Embedding e = delay_embed(x, m, tau);
-                         cvtcli::Progress progress(is_png ? "recurrence" : "rqa", static_cast<double>(e.n), "rows");
-                         ro.progress = [&](double done, double) { progress.update(done); };
-                         const RqaResult r = rqa(e, ro);
-                         progress.finish();
-                         json j = rqa_json(r, m, tau, ro);
-                         if (is_png) {
-                           write_recurrence_png(e, r.eps, -1, *path, *pixels);
-                           j["png"] = *path;
-                         }
-                         if (a->json) {
-                           cvtcli::print_json(j);
-                         } else {
-                           std::printf("RR %.4f DET %.4f L %.3f Lmax %ld ENTR %.3f LAM %.4f TT %.3f (eps %.4g, m %d, tau "
-                                       "%d, Theiler %d)\n",
-                                       r.rr, r.det, r.l_mean, r.lmax, r.entr, r.lam, r.tt, r.eps, m, tau, w);
-                           if (is_png) std::printf("wrote %s\n", path->c_str());
-                         }
-                         return 0;
-                       }});
-    }
-  }
-  {  // test01
-    auto a = std::make_shared<SeriesArgs>();
-    auto o = std::make_shared<Test01Options>();
-    o->subsample = -1;
-    auto* c = an->add_subcommand("test01", "Gottwald-Melbourne 0-1 test for chaos (K ~ 0 regular, ~ 1 chaotic or noise)");
-    add_series_options(c, *a, false);
-    cvtcli::add_int(c, "--subsample", o->subsample, 1, 1000000, "use every n-th sample (default: the AMI delay)");
-    cvtcli::add_int(c, "--n-c", o->n_c, 1, 10000, "number of random frequencies c");
-    cvtcli::add_int(c, "--max-points", o->max_points, 100, 10000000, "points used after subsampling");
-    tools.push_back({c, [a, o] {
-                       const auto x = load(*a, 100);
-                       Test01Options to = *o;
-                       if (to.subsample == -1) to.subsample = pick_tau(*a, x);
-                       const Test01Result r = test01(x, to);
-                       json j{{"K", r.k_median}, {"K_q25", r.k_q25}, {"K_q75", r.k_q75}, {"points", r.points},
-                              {"subsample", r.subsample}, {"n_c", to.n_c}};
-                       if (a->json)
-                         cvtcli::print_json(j);
-                       else
-                         std::printf("K = %.4f (IQR %.4f..%.4f, %d points, subsample %d)\n", r.k_median, r.k_q25,
-                                     r.k_q75, r.points, r.subsample);
-                       return 0;
-                     }});
-  }
-  {  // classify
-    auto a = std::make_shared<SeriesArgs>();
-    auto* c = an->add_subcommand("classify", "verdict: fixed_point / periodic / quasi_periodic / chaotic / inconclusive");
-    add_series_options(c, *a, true);
-    tools.push_back({c, [a] {
-                       CsvColumn col = read_column(a->csv, a->column, a->caps);
-                       if (a->discard < 0 || static_cast<std::size_t>(a->discard) >= col.values.size())
-                         throw cvtcli::UsageError{"--discard must be in 0..N-1"};
-                       cvtcli::require_memory(kSeriesBytesPerSample * static_cast<double>(col.values.size()), a->caps,
-                                              cvtcli::fmt_count(static_cast<double>(col.values.size())) + " samples");
-                       std::vector<double> x(col.values.begin() + a->discard, col.values.end());
-                       ClassifyOptions co;
-                       co.dt = a->dt;
-                       co.tau = a->tau;
-                       co.m = a->m;
-                       co.theiler = a->theiler;
-                       const Classification r = classify(x, co);
-                       const json j = classification_json(r);
-                       if (a->json) {
-                         cvtcli::print_json(j);
-                       } else {
-                         std::printf("classification: %s (%s)\n", r.classification.c_str(), r.confidence.c_str());
-                         for (const auto& s : r.reasons) std::printf("  - %s\n", s.c_str());
-                       }
-                       return 0;
-                     }});
-  }
-  {  // trajectory
-    struct T {
-      std::string scene, x0, out = "-";
-      std::vector<std::string> params;
-      double dt = -1, t_transient = 0, t_end = 10, sample_dt = 0.001;
-      cvtcli::Caps caps;
-    };
-    auto a = std::make_shared<T>();
-    auto* c = an->add_subcommand("trajectory", "simulate a scene (RK4) and write its states as CSV");
-    c->add_option("--scene", a->scene, "model (see cvtplant lyapunov --list) or plant scene (built-in or TOML file) with constant inputs")->required();
-    c->add_option("--x0", a->x0, "initial state, comma-separated");
-    c->add_option("--param", a->params, "name=value (repeatable)");
-    cvtcli::add_real(c, "--dt", a->dt, {1e-9, 1}, "RK4 step [s] (default: the scene's)");
-    cvtcli::add_real(c, "--t-transient", a->t_transient, {0, 1e9}, "time not written [s] (maps: iterations)");
-    cvtcli::add_real(c, "--t-end", a->t_end, {0, 1e9, true}, "time written [s] (maps: iterations)");
-    cvtcli::add_real(c, "--sample-dt", a->sample_dt, {0, 1e9, true}, "output interval [s]");
-    c->add_option("--out", a->out, "output CSV ('-' = stdout)");
-    cvtcli::add_caps(c, a->caps, true, true);
-    tools.push_back({c, [a] {
-                       const auto model = cvtcli::resolve_model(a->scene);
-                       const Model& s = *model;
-                       Params over;
-                       for (const auto& kv : a->params) {
-                         const std::size_t eq = kv.find('=');
-                         if (eq == std::string::npos) throw cvtcli::UsageError{"--param '" + kv + "': expected name=value"};
-                         over[kv.substr(0, eq)] = cvtcli::parse_finite(kv.substr(eq + 1), "--param");
-                       }
-                       const Params p = merge_params(s, over);
-                       const auto x0 = a->x0.empty() ? s.default_x0 : cvtcli::parse_list(a->x0, s.dim, "--x0");
-                       const double dt = a->dt > 0 ? a->dt : s.defaults.dt;
-                       // Work and memory before the run: every step, and the rows held until written.
-                       const double steps = s.is_map ? a->t_transient + a->t_end : (a->t_transient + a->t_end) / dt;
-                       const double rows_n = s.is_map ? a->t_end : a->t_end / std::max(a->sample_dt, dt);
-                       cvtcli::require_steps(steps, a->caps, s.is_map ? "--t-transient + --t-end iterations"
-                                                                       : "(--t-transient + --t-end) / --dt");
-                       cvtcli::require_memory(rows_n * s.dim * 8.0, a->caps,
-                                              cvtcli::fmt_count(rows_n) + " rows of " + std::to_string(s.dim) + " states");
-                       std::vector<std::string> inputs;
-                       if (!has_model(a->scene)) inputs.push_back(a->scene);
-                       std::FILE* f = cvtcli::open_output(a->out, "--out", inputs);
-                       std::vector<double> rows;
-                       {
-                         // No bar when the CSV goes to stdout: on a terminal the two would interleave.
-                         cvtcli::Progress progress("trajectory " + a->scene, f == stdout ? 0.0 : steps, "steps");
-                         rows = s.trajectory(p, x0, dt, a->t_transient, a->t_end, a->sample_dt,
-                                             [&](double done, double) { progress.update(done); });
-                       }
-                       {
-                         CsvWriter w(f);
-                         w.text("t");
-                         for (const auto& n : s.state_names) w.text(n);
-                         w.end_row();
-                         const std::size_t n = rows.size() / s.dim;
-                         const double step = s.is_map ? 1.0 : std::max(1L, std::lround(a->sample_dt / dt)) * dt;
-                         for (std::size_t i = 0; i < n; ++i) {
-                           w.num(a->t_transient + static_cast<double>(i + 1) * step);
-                           for (int k = 0; k < s.dim; ++k) w.num(rows[i * s.dim + k]);
-                           w.end_row();
-                           if ((i & 1023) == 0 && !cvtcli::output_ok(f)) break;  // reported by close_output
-                         }
-                       }
-                       cvtcli::close_output(f);
-                       return 0;
-                     }});
-  }
-  {  // sweep
-    struct S {
-      std::string scene, a1, a2, x0, shard = "0/1", out = "-";
-      std::vector<std::string> params;
-      double dt = -1, t_transient = -1, t_end = -1, t_peaks = 20;
-      int jobs = 0, state = 0;
-      cvtcli::Caps caps;
-    };
-    auto a = std::make_shared<S>();
-    auto* c = an->add_subcommand("sweep", "parameter sweep: spectrum + bifurcation data, parallel and shardable");
-    c->add_option("--scene", a->scene, "model (see cvtplant lyapunov --list) or plant scene (built-in or TOML file) with constant inputs")->required();
-    c->add_option("--axis", a->a1, "first axis name=lo:hi:n")->required();
-    c->add_option("--axis2", a->a2, "optional second axis name=lo:hi:n");
-    c->add_option("--param", a->params, "fixed override name=value (repeatable)");
-    c->add_option("--x0", a->x0, "initial state");
-    cvtcli::add_real(c, "--dt", a->dt, {1e-9, 1}, "RK4 step [s]");
-    cvtcli::add_real(c, "--t-transient", a->t_transient, {0, 1e9}, "discarded time [s]");
-    cvtcli::add_real(c, "--t-end", a->t_end, {0, 1e9, true}, "accumulation time [s]");
-    cvtcli::add_real(c, "--t-peaks", a->t_peaks, {0, 1e9}, "time after the spectrum run for bifurcation peaks [s]");
-    cvtcli::add_int(c, "--state", a->state, 0, 1000, "state index whose local maxima are recorded");
-    c->add_option("--shard", a->shard, "i/N: run points k with k % N == i (for array jobs)");
-    cvtcli::add_int(c, "--jobs", a->jobs, 0, 1024, "threads (default 0: all cores)");
-    c->add_option("--out", a->out, "output CSV ('-' = stdout)");
-    cvtcli::add_caps(c, a->caps, true, true);
-    tools.push_back({c, [a] {
-                       SweepSpec sp;
-                       sp.scene = a->scene;
-                       const auto model = cvtcli::resolve_model(a->scene);
-                       const Model& s = *model;
-                       sp.model = model.get();
-                       for (const auto& kv : a->params) {
-                         const std::size_t eq = kv.find('=');
-                         if (eq == std::string::npos) throw cvtcli::UsageError{"--param '" + kv + "': expected name=value"};
-                         sp.overrides[kv.substr(0, eq)] = cvtcli::parse_finite(kv.substr(eq + 1), "--param");
-                       }
-                       sp.a1 = parse_axis(a->a1);
-                       if (!a->a2.empty()) {
-                         sp.has_a2 = true;
-                         sp.a2 = parse_axis(a->a2);
-                       }
-                       if (!a->x0.empty()) sp.x0 = cvtcli::parse_list(a->x0, s.dim, "--x0");
-                       sp.benettin = s.defaults;
-                       if (a->dt > 0) sp.benettin.dt = a->dt;
-                       if (a->t_transient >= 0) sp.benettin.t_transient = a->t_transient;
-                       if (a->t_end > 0) sp.benettin.t_end = a->t_end;
-                       sp.t_peaks = a->t_peaks;
-                       sp.bif_state = a->state;
-                       if (a->state >= s.dim)
-                         throw cvtcli::UsageError{"--state: " + std::to_string(a->state) + " is not a state index of " +
-                                                  s.name + " (0.." + std::to_string(s.dim - 1) + ")"};
-                       long long si = 0, sn = 1;
-                       {
-                         const std::size_t slash = a->shard.find('/');
-                         std::string why = slash == std::string::npos ? "must look like i/N" : "";
-                         if (why.empty()) why = cvtcli::check_int(a->shard.substr(slash + 1), 1, 1000000, &sn);
-                         if (why.empty()) why = cvtcli::check_int(a->shard.substr(0, slash), 0, sn - 1, &si);
-                         if (!why.empty()) throw cvtcli::UsageError{"--shard " + cvtcli::quoted(a->shard) + ": " + why};
-                       }
-                       // Work and memory of this shard before it runs: every point's
-                       // transient, warm-up, accumulation and peak search; its row.
-                       const double points = std::ceil(static_cast<double>(sp.total()) / static_cast<double>(sn));
-                       const BenettinOptions& bo = sp.benettin;
-                       const double span = bo.t_transient + bo.t_warmup + bo.t_end + sp.t_peaks;
-                       cvtcli::require_steps(points * (s.is_map ? span : span / bo.dt), a->caps,
-                                             cvtcli::fmt_count(points) + " points x " +
-                                                 (s.is_map ? "(transient + warm-up + accumulation + peaks) iterations"
-                                                           : "(transient + warm-up + accumulation + peaks) / dt"));
-                       cvtcli::require_memory(points * (2.0 * s.dim + sp.max_peaks + 8) * 8.0, a->caps,
-                                              cvtcli::fmt_count(points) + " points");
-                       sp.benettin.max_steps = a->caps.max_steps;
-                       std::vector<std::string> inputs;
-                       if (!has_model(a->scene)) inputs.push_back(a->scene);
-                       std::FILE* f = cvtcli::open_output(a->out, "--out", inputs);
-                       cvtcli::Progress progress("sweep " + s.name, points, "points");
-                       const auto pts = run_sweep(sp, static_cast<int>(si), static_cast<int>(sn), a->jobs,
-                                                  [&](long done, long) { progress.update(static_cast<double>(done)); });
-                       progress.finish();
-                       write_sweep_csv(f, sp, s.dim, pts);
-                       cvtcli::close_output(f);
-                       long failed = 0;
-                       for (const auto& p : pts) failed += !p.error.empty();
-                       if (!pts.empty() && failed == static_cast<long>(pts.size()))
-                         throw cvtcli::RunError{"every point (" + std::to_string(failed) + ") failed; first error: " +
-                                                cvtcli::quoted(pts.front().error, 200)};
-                       if (failed > 0)
-                         std::fprintf(stderr, "cvtplant analyze sweep: %ld of %zu point(s) failed (see the error column)\n",
-                                      failed, pts.size());
-                       return 0;
-                     }});
-  }
-  {  // merge
-    auto shards = std::make_shared<std::vector<std::string>>();
-    auto out = std::make_shared<std::string>("-");
-    auto* c = an->add_subcommand("merge", "merge sweep shards; refuses mixed sweeps and missing points");
-    c->add_option("shards", *shards, "shard CSV files")->required();
-    c->add_option("--out", *out, "merged CSV ('-' = stdout)");
-    tools.push_back({c, [shards, out] {
-                       std::FILE* f = cvtcli::open_output(*out, "--out", *shards);
-                       merge_sweep_csv(*shards, f);
-                       cvtcli::close_output(f);
-                       return 0;
-                     }});
-  }
-  {  // figures
-    auto a = std::make_shared<SeriesArgs>();
-    auto dir = std::make_shared<std::string>();
-    auto sweep = std::make_shared<std::string>();
-    auto scene = std::make_shared<std::string>();
-    auto t_end = std::make_shared<double>(20.0);
-    auto caps = std::make_shared<cvtcli::Caps>();
-    auto* c = an->add_subcommand("figures", "PNG figures via gnuplot: series (--csv), scene (--scene) or sweep (--sweep)");
-    c->add_option("--csv", a->csv, "input CSV");
-    c->add_option("--column", a->column, "column name");
-    cvtcli::add_real(c, "--dt", a->dt, {0, 1e6, true}, "sample interval [s]");
-    cvtcli::add_int(c, "--discard", a->discard, 0, 1000000000000LL, "leading samples dropped");
-    cvtcli::add_int(c, "--tau", a->tau, 1, 100000, "delay [samples]");
-    cvtcli::add_int(c, "--m", a->m, 1, 30, "embedding dimension");
-    c->add_option("--scene", *scene, "scene for time histories and phase portraits");
-    cvtcli::add_real(c, "--t-end", *t_end, {0, 1e5, true}, "scene simulation time [s] (maps: iterations)");
-    cvtcli::add_caps(c, *caps, true, true);
-    c->add_option("--sweep", *sweep, "merged sweep CSV for bifurcation and exponent maps");
-    c->add_option("--out-dir", *dir, "output directory")->required();
-    c->add_flag("--json", a->json, "print the written files as JSON");
-    tools.push_back({c, [a, dir, sweep, scene, t_end, caps] {
-                       std::vector<std::string> files;
-                       if (a->csv.empty() && sweep->empty() && scene->empty())
-                         throw cvtcli::UsageError{"give --csv/--column, --scene or --sweep"};
-                       if (!a->csv.empty()) {
-                         if (a->column.empty()) throw cvtcli::UsageError{"--column is required with --csv"};
-                         CsvColumn col = read_column(a->csv, a->column, *caps);
-                         if (a->discard < 0 || static_cast<std::size_t>(a->discard) >= col.values.size())
-                           throw cvtcli::UsageError{"--discard must be in 0..N-1"};
-                         cvtcli::require_memory(kSeriesBytesPerSample * static_cast<double>(col.values.size()), *caps,
-                                                cvtcli::fmt_count(static_cast<double>(col.values.size())) + " samples");
-                         std::vector<double> x(col.values.begin() + a->discard, col.values.end());
-                         auto f = series_figures(x, a->dt, a->column, *dir, a->tau, a->m);
-                         files.insert(files.end(), f.begin(), f.end());
-                       }
-                       const bool plant_scene =
-                           !scene->empty() && (cvt::find_builtin_scene(scene->c_str()) != nullptr || !has_model(*scene));
-                       if (plant_scene) {
-                         // A plant scene (built-in or a file): the frames `run` computes.
-                         const auto loaded = cvtcli::resolve_scene(*scene);
-                         const cvt::Scene& sc = loaded->scene;
-                         const double frames = *t_end / sc.frame_s;
-                         cvtcli::require_steps(frames * sc.substeps, *caps,
-                                               cvtcli::fmt_count(frames) + " frames x " + std::to_string(sc.substeps) +
-                                                   " substeps");
-                         cvtcli::require_memory(frames * 8.0 * 16, *caps, cvtcli::fmt_count(frames) + " frames of 15 signals");
-                         cvtcli::Progress progress("figures " + loaded->name, *t_end);
-                         auto f = rom_scene_figures(sc, loaded->name, *t_end, *dir,
-                                                    [&](double t, double) { progress.update(t); });
-                         files.insert(files.end(), f.begin(), f.end());
-                       } else if (!scene->empty()) {
-                         const auto model = cvtcli::resolve_model(*scene);
-                         const Model& s = *model;
-                         const double steps = s.is_map ? *t_end : *t_end / s.defaults.dt;
-                         cvtcli::require_steps(steps, *caps, s.is_map ? "--t-end iterations" : "--t-end / the scene's dt");
-                         cvtcli::require_memory(steps * s.dim * 8.0, *caps, cvtcli::fmt_count(steps) + " states");
-                         cvtcli::Progress progress("figures " + *scene, steps, "steps");
-                         auto f = model_figures(s, s.default_params, s.default_x0, s.defaults.dt, *t_end, *dir,
-                                                [&](double done, double) { progress.update(done); });
-                         files.insert(files.end(), f.begin(), f.end());
-                       }
-                       if (!sweep->empty()) {
-                         auto f = sweep_figures(*sweep, *dir);
-                         files.insert(files.end(), f.begin(), f.end());
-                       }
-                       if (a->json)
-                         cvtcli::print_json(json{{"files", files}});
-                       else
-                         for (const auto& f : files) std::printf("wrote %s\n", f.c_str());
-                       return 0;
-                     }});
-  }
-
-  {  // seed-section4
-    struct A {
-      std::string scene, out_dir, signals = "F_ax,torque_transmitted";
-      double t_end = -1, t_transient = 2.0;
-      int tau = -1, m = -1;
-      bool json = false;
-      cvtcli::Caps caps;
-    };
-    auto a = std::make_shared<A>();
-    auto* c = an->add_subcommand("seed-section4",
-                                 "the seed's section 4 pipeline on ROM plant signals (1 ms samples, transient removed, "
-                                 "normalised, AMI delay, FNN/Cao dimension, Rosenstein/Kantz exponent, recurrence "
-                                 "plot + RQA, 0-1 test, verdict) with figures and a JSON summary");
-    c->add_option("--scene", a->scene, "plant scene: built-in (seed-case1, seed-case2, ...; see cvtplant scenes) or a TOML scene file")->required();
-    c->add_option("--out-dir", a->out_dir, "output directory: <signal>/*.png and summary.json")->required();
-    c->add_option("--signals", a->signals, "comma-separated plant outputs (F_ax, torque_transmitted, slip, v_rel1, ...)");
-    cvtcli::add_real(c, "--t-end", a->t_end, {0, 1e5, true}, "simulated time [s] (default: the scene's)");
-    cvtcli::add_real(c, "--t-transient", a->t_transient, {0, 1e5}, "removed from the start before the analysis [s]");
-    cvtcli::add_int(c, "--tau", a->tau, 1, 100000, "delay [samples] (default: first AMI minimum)");
-    cvtcli::add_int(c, "--m", a->m, 1, 30, "embedding dimension (default: FNN)");
-    c->add_flag("--json", a->json, "print the summary as JSON");
-    cvtcli::add_caps(c, a->caps, true, true);
-    tools.push_back({c, [a] {
-                       std::vector<std::string> names;
-                       {
-                         std::stringstream ss(a->signals);
-                         std::string n;
-                         while (std::getline(ss, n, ','))
-                           if (!n.empty()) names.push_back(n);
-                       }
-                       if (names.empty()) throw cvtcli::UsageError{"--signals is empty"};
-                       const auto scene = cvtcli::resolve_scene(a->scene);
-                       {
-                         // Work and memory before the run: the frames and their substeps;
-                         // the time and every signal stored, then one signal's analysis.
-                         const cvt::Scene& sc = scene->scene;
-                         const double frames = (a->t_end > 0 ? a->t_end : sc.t_end_s) / sc.frame_s;
-                         cvtcli::require_steps(frames * sc.substeps, a->caps,
-                                               cvtcli::fmt_count(frames) + " frames x " + std::to_string(sc.substeps) +
-                                                   " substeps");
-                         cvtcli::require_memory(frames * (8.0 * (1 + names.size()) + kSeriesBytesPerSample), a->caps,
-                                                cvtcli::fmt_count(frames) + " samples of " +
-                                                    std::to_string(names.size()) + " signal(s) and their analysis");
-                       }
-                       // One bar: the plant run counts as one stage, then each signal's five.
-                       const double stages = 1.0 + 5.0 * static_cast<double>(names.size());
-                       cvtcli::Progress progress("seed-section4 " + scene->name, stages, "stages");
-                       progress.update(0);
-                       const RomSeries run = rom_scene_series(scene->scene, scene->name, names, a->t_end);
-                       progress.update(1);
-                       ensure_dir(a->out_dir);
-                       if (run.fault != "none")
-                         throw cvtcli::RunError{"the plant faulted (" + run.fault + ") in scene " + a->scene};
-                       Section4Options so;
-                       so.dt = run.frame_s;
-                       so.discard = std::lround(a->t_transient / run.frame_s);
-                       so.tau = a->tau;
-                       so.m = a->m;
-                       json out{{"scene", a->scene},
-                                {"sample_s", run.frame_s},
-                                {"t_end_s", run.t.empty() ? 0.0 : run.t.back()},
-                                {"t_transient_s", so.discard * run.frame_s},
-                                {"plant_fault", run.fault},
-                                {"normalisation", "z-score after the transient"},
-                                {"signals", json::array()}};
-                       if (a->scene == "seed-case1")
-                         out["seed_claim"] = "chaotic driver axial force (seed Figs. 18 and 21)";
-                       if (a->scene == "seed-case2")
-                         out["seed_claim"] = "mildly chaotic driver axial force (seed Figs. 19, 20 and 22)";
-                       double stages_before = 1;
-                       for (const auto& n : names) {
-                         so.on_stage = [&](int done, int) { progress.update(stages_before + done); };
-                         const Section4Result r =
-                             section4_pipeline(run.signal.at(n), so, a->scene + " " + n, a->out_dir + "/" + n);
-                         out["signals"].push_back(section4_json(r, rom_signal_unit(n)));
-                         stages_before += 5;
-                       }
-                       progress.finish();
-                       const std::string summary = a->out_dir + "/summary.json";
-                       {
-                         std::FILE* f = cvtcli::open_output(summary, "--out-dir");
-                         const std::string text = out.dump(2) + "\n";
-                         std::fwrite(text.data(), 1, text.size(), f);
-                         cvtcli::close_output(f);
-                       }
-                       if (a->json) {
-                         cvtcli::print_json(out);
-                         return 0;
-                       }
-                       for (const auto& j : out["signals"]) {
-                         std::printf("%s: %s (%s)\n", j["signal"].get<std::string>().c_str(),
-                                     j["classification"].get<std::string>().c_str(),
-                                     j["confidence"].get<std::string>().c_str());
-                         for (const auto& e : j["evidence"]) std::printf("  - %s\n", e.get<std::string>().c_str());
-                       }
-                       std::printf("wrote %s\n", summary.c_str());
-                       return 0;
-                     }});
-  }
-
-  {  // ripple
-    struct R {
-      std::string csv, column, time_column, windows, unit;
-      RippleOptions o;
-      bool json = false;
-      cvtcli::Caps caps;
-    };
-    auto a = std::make_shared<R>();
-    auto* c = an->add_subcommand("ripple", "detrended spread and dominant frequency of a column over time windows");
-    c->add_option("--csv", a->csv, "input CSV with a header row and a time column")->required();
-    c->add_option("--column", a->column, "column name")->required();
-    c->add_option("--time-column", a->time_column, "time column [s] (default: t_s if present, else t)");
-    c->add_option("--windows", a->windows, "windows [t0, t1) in s: T0:T1,T0:T1,...")->required();
-    cvtcli::add_real(c, "--min-hz", a->o.min_hz, {0, 1e9},
-                     "search the dominant frequency at or above this [Hz] (default 20)");
-    cvtcli::add_real(c, "--band", a->o.band, {0, 10, true},
-                     "the line's band around it, relative: f/(1+b)..f(1+b) (default 0.2)");
-    c->add_option("--unit", a->unit, "the column's unit, reported beside its values (default: '-')");
-    c->add_flag("--json", a->json, "machine-readable output");
-    cvtcli::add_caps(c, a->caps, false, true);
-    tools.push_back({c, [a] {
-                       std::vector<std::pair<double, double>> wins;
-                       std::size_t from = 0;
-                       while (from <= a->windows.size()) {
-                         const std::size_t comma = std::min(a->windows.find(',', from), a->windows.size());
-                         const std::string w = a->windows.substr(from, comma - from);
-                         const std::size_t colon = w.find(':');
-                         if (colon == std::string::npos)
-                           throw cvtcli::UsageError{"--windows: '" + w + "' is not T0:T1"};
-                         const double t0 = cvtcli::parse_finite(w.substr(0, colon), "--windows");
-                         const double t1 = cvtcli::parse_finite(w.substr(colon + 1), "--windows");
-                         if (!(t1 > t0)) throw cvtcli::UsageError{"--windows: '" + w + "' must end after it begins"};
-                         wins.emplace_back(t0, t1);
-                         from = comma + 1;
-                       }
-                       std::string tcol = a->time_column;
-                       if (tcol.empty()) {
-                         const auto head = read_csv_header(a->csv);
-                         tcol = std::find(head.begin(), head.end(), "t_s") != head.end() ? "t_s" : "t";
-                       }
-                       const CsvColumn t = read_column(a->csv, tcol, a->caps);
-                       const CsvColumn y = read_column(a->csv, a->column, a->caps);
-                       const std::string unit = a->unit.empty() ? "-" : a->unit;
-                       json rows = json::array();
-                       if (!a->json)
-                         std::printf("%-12s %8s %12s %10s %10s %10s %10s\n", "window_s", "samples", "mean", "std",
-                                     "p-p", "peak_Hz", "line_amp");
-                       for (const auto& [t0, t1] : wins) {
-                         const RippleWindow r = ripple_window(t.values, y.values, t0, t1, a->o);
-                         rows.push_back({{"t_begin_s", r.t_begin_s}, {"t_end_s", r.t_end_s}, {"samples", r.samples},
-                                         {"mean", r.mean}, {"std", r.std}, {"peak_to_peak", r.peak_to_peak},
-                                         {"line_amplitude", r.line_amplitude}, {"unit", unit},
-                                         {"peak_Hz", r.peak_hz}});
-                         if (!a->json)
-                           std::printf("%5g-%-6g %8zu %12.6g %10.4g %10.4g %10.4g %10.4g\n", t0, t1, r.samples, r.mean,
-                                       r.std, r.peak_to_peak, r.peak_hz, r.line_amplitude);
-                       }
-                       if (a->json)
-                         cvtcli::print_json({{"column", a->column}, {"time_column", tcol}, {"min_Hz", a->o.min_hz},
-                                             {"band_rel", a->o.band}, {"windows", rows}});
-                       return 0;
-                     }});
-  }
-
+  const std::vector<Tool> tools = {add_ami(an),        add_fnn(an),        add_cao(an),
+                                   add_lle(an),        add_rqa(an, false), add_rqa(an, true),
+                                   add_test01(an),     add_classify(an),   add_trajectory(an),
+                                   add_sweep(an),      add_merge(an),      add_figures(an),
+                                   add_seed_section4(an), add_ripple(an)};
   return [tools]() -> int {
-    for (const auto& [c, f] : tools)
-      if (c->parsed()) return guarded(f);
+    for (const Tool& t : tools)
+      if (t.app->parsed()) return cvtcli::guarded(t.run);
     throw cvtcli::UsageError{"choose a tool (see cvtplant analyze --help)"};
   };
 }
 
-static const bool registered = cvtcli::add_registrar(&register_analyze);
+const bool registered = cvtcli::add_registrar(&register_analyze);
 
 }  // namespace

@@ -166,13 +166,7 @@ cvtcli::Action register_lyapunov(CLI::App& app) {
       if (a->scene.empty()) throw cvtcli::UsageError{"--scene is required (see --list)"};
       const auto model = cvtcli::resolve_model(a->scene);
       const Model& s = *model;
-      Params over;
-      for (const auto& kv : a->params) {
-        const std::size_t eq = kv.find('=');
-        if (eq == std::string::npos) throw cvtcli::UsageError{"--param '" + kv + "': expected name=value"};
-        over[kv.substr(0, eq)] = cvtcli::parse_finite(kv.substr(eq + 1), "--param " + kv.substr(0, eq));
-      }
-      const Params p = merge_params(s, over);
+      const Params p = merge_params(s, cvtcli::parse_assignments(a->params, "--param"));
       const std::vector<double> x0 =
           a->x0.empty() ? s.default_x0 : cvtcli::parse_list(a->x0, static_cast<std::size_t>(s.dim), "--x0");
       BenettinOptions o = s.defaults;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "field_json.hpp"
 #include "io_util.hpp"
 #include "progress.hpp"
 #include "registry.hpp"
@@ -346,6 +347,9 @@ nlohmann::json summary_json(const ModelOptions& o, int friction_case, const RunO
   j["dt_s"] = o.method == "rk4" ? nlohmann::json(o.dt_s) : nlohmann::json(nullptr);
   j["sheaves"] = o.sheave_mode();
   j["links"] = o.production() ? cvt::mbd::production_set().links : o.links;
+  // Every input of the model, by the reference's field list.
+  j["params"] = field_rows(params_for(o, friction_case),
+                           [](const cvt::mbd::MbdParams& p, FieldRows& w) { cvt::mbd::visit_mbd_params(p, w); });
   j["t_end_s"] = o.t_end_s;
   j["t_reached_s"] = s.last.t_s;
   j["sample_s"] = o.sample_s;

@@ -36,6 +36,16 @@ std::vector<double> parse_list(const std::string& text, std::size_t n, const std
   return out;
 }
 
+std::map<std::string, double> parse_assignments(const std::vector<std::string>& items, const std::string& flag) {
+  std::map<std::string, double> out;
+  for (const auto& kv : items) {
+    const std::size_t eq = kv.find('=');
+    if (eq == std::string::npos || eq == 0) throw UsageError{flag + " '" + kv + "': expected name=value"};
+    out[kv.substr(0, eq)] = parse_finite(kv.substr(eq + 1), flag + " " + kv.substr(0, eq));
+  }
+  return out;
+}
+
 std::string read_input_file(const std::string& path, std::size_t max_bytes, const std::string& what) {
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0)

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdio>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,11 @@ double parse_finite(const std::string& text, const std::string& what);
 
 // Parses "a,b,c,..." into exactly `n` finite doubles (n = 0: any count >= 1).
 std::vector<double> parse_list(const std::string& text, std::size_t n, const std::string& what);
+
+// Parses repeated "name=value" options (`--param`) into a map of finite
+// doubles; a later assignment of a name replaces an earlier one. Throws
+// UsageError naming `flag` (and the name, for a bad value).
+std::map<std::string, double> parse_assignments(const std::vector<std::string>& items, const std::string& flag);
 
 // Reads a whole input file of at most `max_bytes` (a regular file or a pipe;
 // a directory, a device such as /dev/null or /dev/zero, or a larger input

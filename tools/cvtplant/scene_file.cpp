@@ -7,19 +7,39 @@
 #include <iterator>
 #include <map>
 #include <set>
+#include <type_traits>
 #include <vector>
 
 #include "commands.hpp"
 #include "io_util.hpp"
 #include "options.hpp"
+#include "cvtplant/friction/friction_fields.hpp"
 #include "cvtplant/plant/rom_features.hpp"
+#include "cvtplant/scene/scene_params.hpp"
 #include "cvtplant/scene/builtin_scenes.hpp"
 
 namespace cvtcli {
 
 namespace {
 
-constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+// The value of `name` in a table of named values, into out; false if none.
+template <class E, std::size_t N>
+bool named_value(const cvt::NamedValue<E> (&table)[N], const std::string& name, E& out) {
+  for (const auto& e : table)
+    if (name == e.name) {
+      out = e.value;
+      return true;
+    }
+  return false;
+}
+
+// "a, b, c": the names of such a table, for messages.
+template <class E, std::size_t N>
+std::string names_of(const cvt::NamedValue<E> (&table)[N]) {
+  std::string s;
+  for (const auto& e : table) s += (s.empty() ? "" : ", ") + std::string(e.name);
+  return s;
+}
 
 // The features' names are the plant's (plant/rom_features.hpp).
 using FeatureName = cvt::RomFeatureName;
@@ -160,97 +180,63 @@ class Reader {
     return p;
   }
 
-  void friction(const toml::table& t, cvt::FrictionParams<double>& f) {
-    const std::string pre = "friction.";
-    check_known(t, pre, {"preset", "law", "mu0", "a", "b_m_s", "sigma", "kappa_s_m", "chi_s_m", "sign", "lambda_s_m"});
-    const std::string preset = text(t, pre, "preset", "");
-    if (preset == "oscillator_coulomb") f = cvt::friction_presets::oscillator_coulomb<double>();
-    else if (preset == "oscillator_stribeck") f = cvt::friction_presets::oscillator_stribeck<double>();
-    else if (preset == "table2_case1") f = cvt::friction_presets::table2_case1<double>();
-    else if (preset == "table2_case2") f = cvt::friction_presets::table2_case2<double>();
-    else if (!preset.empty())
-      fail(t.get("preset")->source(), pre + "preset",
-           "unknown preset " + quoted(preset) + " (oscillator_coulomb, oscillator_stribeck, table2_case1, table2_case2)");
-    const std::string law = text(t, pre, "law", "");
-    if (law == "constant") f.law = cvt::FrictionLaw::constant;
-    else if (law == "case1") f.law = cvt::FrictionLaw::case1;
-    else if (law == "case2") f.law = cvt::FrictionLaw::case2;
-    else if (!law.empty()) fail(t.get("law")->source(), pre + "law", "unknown law " + quoted(law) + " (constant, case1, case2)");
-    const std::string sign = text(t, pre, "sign", "");
-    if (sign == "atan") f.sign = cvt::SignFunction::atan;
-    else if (sign == "tanh") f.sign = cvt::SignFunction::tanh;
-    else if (sign == "exact") f.sign = cvt::SignFunction::exact;
-    else if (!sign.empty()) fail(t.get("sign")->source(), pre + "sign", "unknown sign " + quoted(sign) + " (atan, tanh, exact)");
-    f.mu0 = number(t, pre, "mu0", f.mu0);
-    f.a = number(t, pre, "a", f.a);
-    f.b_m_s = number(t, pre, "b_m_s", f.b_m_s);
-    f.sigma = number(t, pre, "sigma", f.sigma);
-    f.kappa_s_m = number(t, pre, "kappa_s_m", f.kappa_s_m);
-    f.chi_s_m = number(t, pre, "chi_s_m", f.chi_s_m);
-    f.lambda_s_m = number(t, pre, "lambda_s_m", f.lambda_s_m);
+  // The key of a row of scene/scene_params.hpp (the one list of the scene's
+  // parameter keys) in table `table` ("params", "friction", "initial"), or
+  // "" for another table's row. beta0 is the one key in other units: the
+  // file takes degrees.
+  static std::string row_key(const cvt::SceneParamInfo& r, const std::string& table) {
+    const std::string name = r.name;
+    if (name.compare(0, table.size() + 1, table + ".") != 0) return "";
+    const std::string key = name.substr(table.size() + 1);
+    return key == "beta0_rad" ? "beta0_deg" : key;
   }
 
-  // The [params] table: every RomParams field (beta0 in degrees).
-  void params(const toml::table& t, cvt::RomParams& p) {
-    const std::string pre = "params.";
-    check_known(t, pre,
-                {"r1_m", "r2_m", "beta0_deg", "center_distance_m", "J1_kgm2", "J2_kgm2", "lump_mass_kg", "k1_N_m",
-                 "c1_Ns_m", "k2_N_m", "c2_Ns_m", "entry_load_share", "normal_load_factor", "hold_driver_speed", "hold_driven_speed", "stick_speed_m_s",
-                 "speed_limit_rad_s", "actuator_tau_s", "clamp_max_N", "sheave_mass_kg", "sheave_damping_Ns_m", "K_ax_N_m", "road_T0_Nm",
-                 "road_cv_Nms_rad", "road_ca_Nms2_rad2", "road_w_eps_rad_s", "zeta1_rad", "zeta2_rad", "pitch_m",
-                 "ripple_gain", "driven_clamp_N", "radial_mass_kg", "radial_damping_Ns_m", "radial_travel_m", "radial_stop_N_m",
-                 "wrap_tension_share", "chain_mass_kg_m", "chain_stiffness_N", "creep_gain", "stop_tension_N",
-                 "stop_tension_share", "centrifugal_gain", "wrap_excess_share", "fixed_sheaves"});
-    p.r1_m = number(t, pre, "r1_m", p.r1_m);
-    p.r2_m = number(t, pre, "r2_m", p.r2_m);
-    p.beta0_rad = number(t, pre, "beta0_deg", p.beta0_rad / kDegToRad) * kDegToRad;
-    p.center_distance_m = number(t, pre, "center_distance_m", p.center_distance_m);
-    p.J1_kgm2 = number(t, pre, "J1_kgm2", p.J1_kgm2);
-    p.J2_kgm2 = number(t, pre, "J2_kgm2", p.J2_kgm2);
-    p.lump_mass_kg = number(t, pre, "lump_mass_kg", p.lump_mass_kg);
-    p.k1_N_m = number(t, pre, "k1_N_m", p.k1_N_m);
-    p.c1_Ns_m = number(t, pre, "c1_Ns_m", p.c1_Ns_m);
-    p.k2_N_m = number(t, pre, "k2_N_m", p.k2_N_m);
-    p.c2_Ns_m = number(t, pre, "c2_Ns_m", p.c2_Ns_m);
-    p.entry_load_share = number(t, pre, "entry_load_share", p.entry_load_share);
-    p.normal_load_factor = number(t, pre, "normal_load_factor", p.normal_load_factor);
-    p.hold_driver_speed = boolean(t, pre, "hold_driver_speed", p.hold_driver_speed);
-    p.hold_driven_speed = boolean(t, pre, "hold_driven_speed", p.hold_driven_speed);
-    p.stick_speed_m_s = number(t, pre, "stick_speed_m_s", p.stick_speed_m_s);
-    p.speed_limit_rad_s = number(t, pre, "speed_limit_rad_s", p.speed_limit_rad_s);
-    p.actuator_tau_s = number(t, pre, "actuator_tau_s", p.actuator_tau_s);
-    p.clamp_max_N = number(t, pre, "clamp_max_N", p.clamp_max_N);
-    p.sheave_mass_kg = number(t, pre, "sheave_mass_kg", p.sheave_mass_kg);
-    p.sheave_damping_Ns_m = number(t, pre, "sheave_damping_Ns_m", p.sheave_damping_Ns_m);
-    p.K_ax_N_m = number(t, pre, "K_ax_N_m", p.K_ax_N_m);
-    p.road_T0_Nm = number(t, pre, "road_T0_Nm", p.road_T0_Nm);
-    p.road_cv_Nms_rad = number(t, pre, "road_cv_Nms_rad", p.road_cv_Nms_rad);
-    p.road_ca_Nms2_rad2 = number(t, pre, "road_ca_Nms2_rad2", p.road_ca_Nms2_rad2);
-    p.road_w_eps_rad_s = number(t, pre, "road_w_eps_rad_s", p.road_w_eps_rad_s);
-    p.zeta1_rad = number(t, pre, "zeta1_rad", p.zeta1_rad);
-    p.zeta2_rad = number(t, pre, "zeta2_rad", p.zeta2_rad);
-    p.pitch_m = number(t, pre, "pitch_m", p.pitch_m);
-    p.ripple_gain = number(t, pre, "ripple_gain", p.ripple_gain);
-    p.driven_clamp_N = number(t, pre, "driven_clamp_N", p.driven_clamp_N);
-    p.radial_mass_kg = number(t, pre, "radial_mass_kg", p.radial_mass_kg);
-    p.radial_damping_Ns_m = number(t, pre, "radial_damping_Ns_m", p.radial_damping_Ns_m);
-    p.radial_travel_m = number(t, pre, "radial_travel_m", p.radial_travel_m);
-    p.radial_stop_N_m = number(t, pre, "radial_stop_N_m", p.radial_stop_N_m);
-    p.wrap_tension_share = number(t, pre, "wrap_tension_share", p.wrap_tension_share);
-    p.chain_mass_kg_m = number(t, pre, "chain_mass_kg_m", p.chain_mass_kg_m);
-    p.chain_stiffness_N = number(t, pre, "chain_stiffness_N", p.chain_stiffness_N);
-    p.creep_gain = number(t, pre, "creep_gain", p.creep_gain);
-    p.stop_tension_N = number(t, pre, "stop_tension_N", p.stop_tension_N);
-    p.stop_tension_share = number(t, pre, "stop_tension_share", p.stop_tension_share);
-    p.centrifugal_gain = number(t, pre, "centrifugal_gain", p.centrifugal_gain);
-    p.wrap_excess_share = number(t, pre, "wrap_excess_share", p.wrap_excess_share);
-    p.fixed_sheaves = boolean(t, pre, "fixed_sheaves", p.fixed_sheaves);
+  // Every row of `table` that t sets, into s; `also`: the table's keys that
+  // are not rows, read by the caller before the rows.
+  void rows(const toml::table& t, const std::string& table, cvt::Scene& s, std::set<std::string> also = {}) {
+    const std::string pre = table + ".";
+    for (const cvt::SceneParamInfo& r : cvt::kSceneParams)
+      if (const std::string key = row_key(r, table); !key.empty()) also.insert(key);
+    check_known(t, pre, also);
+    if (table == "friction") friction_choices(t, s.params.friction);
+    for (const cvt::SceneParamInfo& r : cvt::kSceneParams) {
+      const std::string key = row_key(r, table);
+      if (key.empty()) continue;
+      if (r.kind == cvt::SceneParamKind::flag)
+        r.set(s, boolean(t, pre, key.c_str(), r.get(s) != 0.0) ? 1.0 : 0.0);
+      else if (key == "beta0_deg")
+        r.set(s, number(t, pre, key.c_str(), r.get(s) / cvt::kDegToRad) * cvt::kDegToRad);
+      else
+        r.set(s, number(t, pre, key.c_str(), r.get(s)));
+    }
+  }
+
+  // [friction]'s keys that are not numbers: a preset (applied first), the
+  // law and the sign function, by name.
+  void friction_choices(const toml::table& t, cvt::FrictionParams<double>& f) {
+    const std::string pre = "friction.";
+    if (const toml::node* n = t.get("preset")) {
+      const std::string preset = text(t, pre, "preset", "");
+      if (!preset.empty() && !named_value(cvt::kFrictionPresetNames, preset, f))
+        fail(n->source(), pre + "preset", "unknown preset " + quoted(preset) + " (" + names_of(cvt::kFrictionPresetNames) + ")");
+    }
+    choice(t, "law", f.law);
+    choice(t, "sign", f.sign);
+  }
+  template <class E>
+  void choice(const toml::table& t, const char* key, E& value) {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) return;
+    const std::string name = text(t, "friction.", key, "");
+    if (!name.empty() && !named_value(value_names(value), name, value))
+      fail(n->source(), std::string("friction.") + key,
+           "unknown " + std::string(key) + " " + quoted(name) + " (" + names_of(value_names(value)) + ")");
   }
 
   // A parameter file (`cvtplant calibrate --out`): [params] only, applied to s.
   void read_params_only(cvt::Scene& s) {
     check_known(root_, "", {"params"});
-    if (const toml::table* t = table(root_, "", "params")) params(*t, s.params);
+    if (const toml::table* t = table(root_, "", "params")) rows(*t, "params", s);
     const cvt::SceneIssue issue = cvt::validate_scene(s);
     if (!issue.ok) fail_field(field_key(issue.field), issue.message);
   }
@@ -288,23 +274,9 @@ class Reader {
     else if (scalar == "fixed") s.scalar = cvt::ScalarKind::q16_16;
     else fail_field("scalar", "unknown scalar " + quoted(scalar) + " (double, float, fixed)");
 
-    cvt::RomParams& p = s.params;
-    if (const toml::table* t = table(root_, "", "params")) params(*t, p);
-    if (const toml::table* t = table(root_, "", "friction")) friction(*t, p.friction);
-    if (const toml::table* t = table(root_, "", "initial")) {
-      const std::string pre = "initial.";
-      check_known(*t, pre, {"omega1_rad_s", "omega2_rad_s", "x1_m", "xd1_m_s", "x2_m", "xd2_m_s", "phase_rad",
-                            "radius_offset_m"});
-      cvt::RomInitial& x = s.initial;
-      x.omega1_rad_s = number(*t, pre, "omega1_rad_s", x.omega1_rad_s);
-      x.omega2_rad_s = number(*t, pre, "omega2_rad_s", x.omega2_rad_s);
-      x.x1_m = number(*t, pre, "x1_m", x.x1_m);
-      x.xd1_m_s = number(*t, pre, "xd1_m_s", x.xd1_m_s);
-      x.x2_m = number(*t, pre, "x2_m", x.x2_m);
-      x.xd2_m_s = number(*t, pre, "xd2_m_s", x.xd2_m_s);
-      x.phase_rad = number(*t, pre, "phase_rad", x.phase_rad);
-      x.radius_offset_m = number(*t, pre, "radius_offset_m", x.radius_offset_m);
-    }
+    if (const toml::table* t = table(root_, "", "params")) rows(*t, "params", s);
+    if (const toml::table* t = table(root_, "", "friction")) rows(*t, "friction", s, {"preset", "law", "sign"});
+    if (const toml::table* t = table(root_, "", "initial")) rows(*t, "initial", s);
     if (const toml::table* t = table(root_, "", "inputs")) {
       check_known(*t, "inputs.", {"tau_in", "tau_load", "clamp"});
       s.tau_in = profile(*t, "tau_in", s.tau_in);

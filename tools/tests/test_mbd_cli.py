@@ -37,6 +37,21 @@ class Run(unittest.TestCase):
         self.assertGreater(j["steps"], 0)
         self.assertGreater(j["omega1_end_rad_s"], 0)
 
+    def test_json_params_are_the_runs_inputs(self):
+        # Every input of the model as a row (the reference's field list): the
+        # options given show up there, a nested field carries its group.
+        r = run("mbd", "--case", "2", *SHORT, "--links", "40", "--tau-in", "0:20,0.02:80", "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        rows = {p["name"]: p for p in json.loads(r.stdout)["params"]}
+        self.assertEqual(len(rows), len(json.loads(r.stdout)["params"]))  # one row a field
+        self.assertEqual(rows["links"]["value"], 40)
+        self.assertEqual(rows["tau_in_Nm"]["value"], [[0.0, 20.0], [0.02, 80.0]])
+        self.assertEqual(rows["tau_in_Nm"]["unit"], "N.m")
+        self.assertEqual(rows["friction.law"]["value"], "case2")
+        self.assertEqual(rows["sheaves"]["value"], "fixed")
+        self.assertEqual(rows["road.T0_Nm"], {"name": "road.T0_Nm", "value": 0.0, "unit": "N.m"})
+        self.assertFalse(rows["start.active"]["value"])
+
     def test_csv_rows_and_columns(self):
         with tempfile.TemporaryDirectory() as d:
             path = os.path.join(d, "out.csv")

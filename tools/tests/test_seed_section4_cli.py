@@ -139,7 +139,7 @@ def run_scene(binary, tmp, scene, t_end):
         check(abs(fax["stats"]["mean"] - 3300.0) <= 1e-9 * 3300.0 and fax["stats"]["std"] <= 1e-9 * 3300.0,
               "%s F_ax: equals the 3.3 kN command (mean %.12g)" % (scene, fax["stats"]["mean"]))
     tq = sigs["torque_transmitted"]
-    check(fax["stats"]["unit"] == "N" and tq["stats"]["unit"] == "N m",
+    check(fax["stats"]["unit"] == "N" and tq["stats"]["unit"] == "N.m",
           "%s stats name their units (%r, %r)" % (scene, fax["stats"]["unit"], tq["stats"]["unit"]))
     check(not tq["constant"], "%s torque: not constant (std %g N m)" % (scene, tq["stats"]["std"]))
     if tq["constant"]:

@@ -20,11 +20,6 @@ namespace {
 // The CSV's format: raised when its columns change (the key carries it).
 constexpr int kCacheFormat = 4;
 
-const char* choice_name(cvt::FrictionLaw v) { return cvt::value_name(cvt::kFrictionLawNames, v); }
-const char* choice_name(cvt::SignFunction v) { return cvt::value_name(cvt::kSignFunctionNames, v); }
-const char* choice_name(cvt::mbd::SheaveMode v) { return cvt::value_name(cvt::mbd::kSheaveModeNames, v); }
-const char* choice_name(cvt::mbd::Method v) { return cvt::value_name(cvt::mbd::kMethodNames, v); }
-
 // One line per field: "group.name value"; doubles to 17 digits (every bit).
 struct KeyWriter {
   std::ostringstream& k;
@@ -38,7 +33,7 @@ struct KeyWriter {
     if (f.cap) return;
     name(f);
     if constexpr (std::is_enum_v<X>) {
-      k << choice_name(x);
+      k << cvt::value_name(value_names(x), x);
     } else if constexpr (std::is_same_v<X, cvt::mbd::TimeProfile>) {
       k << x.points.size();
       for (const auto& pt : x.points) k << ' ' << pt.first << ':' << pt.second;

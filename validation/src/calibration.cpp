@@ -9,15 +9,50 @@
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
-#include <type_traits>
+#include <stdexcept>
 
-#include "cvtplant/plant/rom_param_fields.hpp"
+#include "cvtplant/scene/scene_params.hpp"
 #include "cvtplant/validation/errors.hpp"
 #include "cvtplant/validation/plant.hpp"
 
 namespace cvt::validation {
 
 namespace {
+
+// The parameters calibrate may fit: the plant's lumped, effective values (the
+// others are physical values the reference shares, or flags), by their row
+// of scene/scene_params.hpp, and how.
+struct Fittable {
+  const char* key;  // "params.<key>"
+  ParamFit fit;
+};
+constexpr Fittable kFittable[] = {
+    {"r1_m", ParamFit::positive},
+    {"r2_m", ParamFit::positive},
+    {"lump_mass_kg", ParamFit::positive},
+    {"k1_N_m", ParamFit::positive},
+    {"c1_Ns_m", ParamFit::positive},
+    {"k2_N_m", ParamFit::positive},
+    {"c2_Ns_m", ParamFit::positive},
+    {"entry_load_share", ParamFit::share},
+    {"normal_load_factor", ParamFit::positive},
+    {"wrap_tension_share", ParamFit::share},
+    {"chain_mass_kg_m", ParamFit::positive},
+    {"centrifugal_gain", ParamFit::positive},
+    {"chain_stiffness_N", ParamFit::positive},
+    {"creep_gain", ParamFit::positive},
+    {"stop_tension_N", ParamFit::positive},
+    {"stop_tension_share", ParamFit::share},
+    // eta_w is a share by its name but fitted as a positive value.
+    {"wrap_excess_share", ParamFit::positive},
+};
+
+// The row of a [params] key, or nullptr.
+const cvt::SceneParamInfo* params_row(const std::string& key) {
+  for (const cvt::SceneParamInfo& r : cvt::kSceneParams)
+    if (r.kind == cvt::SceneParamKind::real && std::string(r.name) == "params." + key) return &r;
+  return nullptr;
+}
 
 // The unknown of a fitted value: log(value / start) for a positive value,
 // the change of logit(value) for a share in (0, 1), so every value stays in
@@ -31,25 +66,27 @@ double fitted_value(ParamFit fit, double start, double theta) {
 // d value / d theta (one standard deviation of theta to one of the value).
 double value_slope(ParamFit fit, double value) { return fit == ParamFit::share ? value * (1.0 - value) : value; }
 
-double& number(cvt::RomParams& p, const std::string& name) {
-  double* x = cvt::rom_param_number(p, name.c_str());
-  if (x == nullptr) throw InputError("no plant parameter '" + name + "'");
-  return *x;
+double get(const cvt::RomParams& p, const cvt::SceneParamInfo& row) {
+  cvt::Scene s;
+  s.params = p;
+  return row.get(s);
 }
 
-double number(const cvt::RomParams& p, const std::string& name) {
-  cvt::RomParams q = p;
-  return number(q, name);
+void set(cvt::RomParams& p, const cvt::SceneParamInfo& row, double v) {
+  cvt::Scene s;
+  s.params = p;
+  row.set(s, v);
+  p = s.params;
 }
 
 }  // namespace
 
 std::vector<std::string> fittable_names() {
   std::vector<std::string> out;
-  const cvt::RomParams p{};
-  cvt::visit_rom_params(p, [&](const cvt::ParamField& f, const auto&) {
-    if (f.fit != ParamFit::none) out.emplace_back(f.name);
-  });
+  for (const Fittable& f : kFittable) {
+    if (params_row(f.key) == nullptr) throw std::logic_error(std::string("no [params] row ") + f.key);
+    out.emplace_back(f.key);
+  }
   return out;
 }
 
@@ -58,20 +95,21 @@ double CalibrationResult::rms_residual_end() const { return std::sqrt(cost_end /
 
 Calibration::Calibration(const std::vector<std::string>& fit, const cvt::RomParams& start) : base_(start) {
   for (const auto& name : fit) {
-    cvt::ParamField field{};
-    if (cvt::rom_param_number(base_, name.c_str(), &field) == nullptr || field.fit == ParamFit::none ||
-        field.to_si != 1.0)
-      throw InputError("unknown parameter '" + name + "'");
+    const Fittable* f = nullptr;
+    for (const Fittable& c : kFittable)
+      if (name == c.key) f = &c;
+    const cvt::SceneParamInfo* row = f != nullptr ? params_row(name) : nullptr;
+    if (row == nullptr) throw InputError("unknown parameter '" + name + "'");
     for (const auto& g : fit_)
       if (g.name == name) throw InputError("'" + name + "' given twice");
-    fit_.push_back({name, field.fit});
+    fit_.push_back({name, f->fit, row});
   }
   if (fit_.empty()) throw InputError("no parameter");
   // A share at an end of its range (0 or 1: a term switched off) has no
   // logit; its fit starts from the middle.
   for (const auto& f : fit_) {
-    double& v = number(base_, f.name);
-    if (f.fit == ParamFit::share && !(v > 0.0 && v < 1.0)) v = 0.5;
+    const double v = get(base_, *f.row);
+    if (f.fit == ParamFit::share && !(v > 0.0 && v < 1.0)) set(base_, *f.row, 0.5);
   }
 }
 
@@ -94,7 +132,7 @@ int Calibration::residual_count() const {
 
 void Calibration::apply(const double* theta, cvt::RomParams& p) const {
   for (std::size_t i = 0; i < fit_.size(); ++i)
-    number(p, fit_[i].name) = fitted_value(fit_[i].fit, number(base_, fit_[i].name), theta[i]);
+    set(p, *fit_[i].row, fitted_value(fit_[i].fit, get(base_, *fit_[i].row), theta[i]));
 }
 
 // Residuals: for each case and quantity, relative_residuals of the plant
@@ -204,8 +242,8 @@ CalibrationResult Calibration::run(int max_evals, const std::function<void(long)
     const Fitted& f = fit_[static_cast<std::size_t>(i)];
     FittedParam p;
     p.name = f.name;
-    p.start = number(base_, f.name);
-    p.value = number(r.fitted, f.name);
+    p.start = get(base_, *f.row);
+    p.value = get(r.fitted, *f.row);
     p.sigma = value_slope(f.fit, p.value) * std::sqrt(std::max(0.0, s2 * cov(i, i)));
     p.sigma_rel = p.sigma / p.value;
     p.identifiable = identifiable[static_cast<std::size_t>(i)];
@@ -279,7 +317,7 @@ std::string header_text(const CalibrationResult& r, const std::string& command, 
               r.residuals);
   s += "#include \"cvtplant/plant/rom_params.hpp\"\n\nnamespace cvt::calibrated {\n\n";
   s += format("constexpr void %s(RomParams& p) {\n", function.c_str());
-  // Fittable fields carry their struct member's name and SI unit (to_si 1).
+  // A fittable [params] key is its RomParams member's name, in SI.
   for (const auto& p : r.params) s += format("  p.%s = %.17g;\n", p.name.c_str(), p.value);
   s += "}\n\n}  // namespace cvt::calibrated\n";
   return s;

@@ -15,10 +15,13 @@
 
 namespace cvt::analysis {
 
-// Signals that rom_scene_series can sample (names as in `cvtplant run --csv`).
+// Signals that rom_scene_series can sample: every output signal of the
+// plant's list (plant/rom_signals.hpp, the names of `cvtplant run --csv`)
+// and the lumps' states x1, xd1, x2, xd2.
 const std::vector<std::string>& rom_signal_names();
-// A signal's SI unit as the command line's JSON names it ("N", "N m", "m/s",
-// "rad/s", "m"; "-" for slip and ratios). InputError for an unknown name.
+// A signal's SI unit as the plant's signal list writes it ("N", "N.m",
+// "m/s", "rad/s"; "1" for slip, ratios and flags; "m", "m/s" for the lumps'
+// states). InputError for an unknown name.
 std::string rom_signal_unit(const std::string& name);
 
 struct RomSeries {

@@ -1,9 +1,11 @@
 #pragma once
-// The friction parameters' field list (physics/param_field.hpp), and the
-// names of the laws and sign functions as scene files and keys write them
-// (docs/rom.md#scene-files, docs/physics.md#friction).
+// The names of the friction laws, the sign functions and the parameter
+// presets as scene files, cache keys and JSON write them
+// (docs/rom.md#scene-files, docs/physics.md#friction). The coefficients'
+// names are the friction.* rows of scene/scene_params.hpp.
+#include <cstddef>
+
 #include "cvtplant/friction/friction_law.hpp"
-#include "cvtplant/physics/param_field.hpp"
 
 namespace cvt {
 
@@ -17,28 +19,25 @@ inline constexpr NamedValue<FrictionLaw> kFrictionLawNames[] = {
     {"constant", FrictionLaw::constant}, {"case1", FrictionLaw::case1}, {"case2", FrictionLaw::case2}};
 inline constexpr NamedValue<SignFunction> kSignFunctionNames[] = {
     {"atan", SignFunction::atan}, {"tanh", SignFunction::tanh}, {"exact", SignFunction::exact}};
+// The names of an enumeration's values, found by its type (argument-
+// dependent lookup), for generic readers and writers of field lists.
+constexpr const auto& value_names(FrictionLaw) { return kFrictionLawNames; }
+constexpr const auto& value_names(SignFunction) { return kSignFunctionNames; }
+
+// The named parameter sets (docs/physics.md#friction-presets), as a scene
+// file's [friction] preset names them.
+inline constexpr NamedValue<FrictionParams<double>> kFrictionPresetNames[] = {
+    {"oscillator_coulomb", friction_presets::oscillator_coulomb<double>()},
+    {"oscillator_stribeck", friction_presets::oscillator_stribeck<double>()},
+    {"table2_case1", friction_presets::table2_case1<double>()},
+    {"table2_case2", friction_presets::table2_case2<double>()}};
 
 // The name of an enumerator in such a table ("?" if it has none).
-template <class E, int N>
+template <class E, std::size_t N>
 constexpr const char* value_name(const NamedValue<E> (&table)[N], E value) {
   for (const auto& e : table)
     if (e.value == value) return e.name;
   return "?";
-}
-
-// v(const ParamField&, field&) for every field of FrictionParams<T>, in
-// declaration order; P is FrictionParams<T> or its const.
-template <class P, class V>
-constexpr void visit_friction_fields(P& f, V&& v) {
-  v(ParamField{"law", ""}, f.law);
-  v(ParamField{"mu0", "1"}, f.mu0);
-  v(ParamField{"a", "1"}, f.a);
-  v(ParamField{"b_m_s", "m/s"}, f.b_m_s);
-  v(ParamField{"sigma", "1"}, f.sigma);
-  v(ParamField{"kappa_s_m", "s/m"}, f.kappa_s_m);
-  v(ParamField{"chi_s_m", "s/m"}, f.chi_s_m);
-  v(ParamField{"sign", ""}, f.sign);
-  v(ParamField{"lambda_s_m", "s/m"}, f.lambda_s_m);
 }
 
 }  // namespace cvt

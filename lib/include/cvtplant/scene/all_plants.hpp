@@ -28,26 +28,38 @@ namespace f = rom_feature;
 inline constexpr std::uint32_t kRuntime = rom_feature::runtime_capable;
 template <class T>
 constexpr bool kHasWedging = std::is_floating_point<T>::value;
-// The compiled masks of each part (lib/src/all_plants_<scalar>_<part>.cpp).
+// The parts of the set, each compiled in translation units of its own
+// (lib/src/all_plants_<scalar>_<part>.cpp); the one place their masks are
+// written.
+// The core plant with axial and polygon (road load and deformation at set-up).
 template <class T>
 using Plain = RomPlantSetRt<T, kRuntime, 0, f::axial, f::polygon, f::axial | f::polygon>;
+// The same with the chain's tension state (docs/rom.md#tension).
 template <class T>
 using Tension = RomPlantSetRt<T, kRuntime, f::tension, f::tension | f::axial, f::tension | f::polygon,
                               f::tension | f::axial | f::polygon>;
+// The variable-ratio plants (wedging needs axial), with polygon and tension;
+// floating point only (docs/rom.md#wedging, #tension-radial).
 template <class T>
 using Wedging = RomPlantSetRt<T, kRuntime, f::axial | f::wedging, f::axial | f::wedging | f::polygon,
                               f::axial | f::wedging | f::tension, f::axial | f::wedging | f::polygon | f::tension>;
+
+// The plant set of the masks of several sets.
+template <class... Sets>
+struct Joined;
+template <class Set>
+struct Joined<Set> {
+  using type = Set;
+};
+template <class T, std::uint32_t R, std::uint32_t... A, std::uint32_t... B, class... Rest>
+struct Joined<RomPlantSetRt<T, R, A...>, RomPlantSetRt<T, R, B...>, Rest...>
+    : Joined<RomPlantSetRt<T, R, A..., B...>, Rest...> {};
+
 // Every mask of scalar T; the storage size and alignment come from this set,
 // the code from lib/src.
 template <class T>
-using Masks = std::conditional_t<
-    kHasWedging<T>,
-    RomPlantSetRt<T, kRuntime, 0, f::axial, f::polygon, f::axial | f::polygon, f::tension, f::tension | f::axial,
-                  f::tension | f::polygon, f::tension | f::axial | f::polygon, f::axial | f::wedging,
-                  f::axial | f::wedging | f::polygon, f::axial | f::wedging | f::tension,
-                  f::axial | f::wedging | f::polygon | f::tension>,
-    RomPlantSetRt<T, kRuntime, 0, f::axial, f::polygon, f::axial | f::polygon, f::tension, f::tension | f::axial,
-                  f::tension | f::polygon, f::tension | f::axial | f::polygon>>;
+using Masks = std::conditional_t<kHasWedging<T>, typename Joined<Plain<T>, Tension<T>, Wedging<T>>::type,
+                                 typename Joined<Plain<T>, Tension<T>>::type>;
 }  // namespace all_plants_detail
 
 template <class T>

@@ -5,28 +5,51 @@
 // cache key (docs/validation.md#cache) and any reader or writer of these
 // parameters walk this list, so a field added to MbdParams is added here in
 // one line; validation/tests/test_param_lists.cpp fails until it is.
+#include <type_traits>
+
 #include "cvtplant/friction/friction_fields.hpp"
 #include "cvtplant/mbd/params.hpp"
 #include "cvtplant/mbd/run.hpp"
 #include "cvtplant/physics/param_field.hpp"
+#include "cvtplant/scene/scene_params.hpp"
 
 namespace cvt::mbd {
 
 inline constexpr NamedValue<SheaveMode> kSheaveModeNames[] = {{"fixed", SheaveMode::fixed},
                                                               {"clamped", SheaveMode::clamped}};
 inline constexpr NamedValue<Method> kMethodNames[] = {{"bdf", Method::bdf}, {"rk4", Method::rk4}};
+constexpr const auto& value_names(SheaveMode) { return kSheaveModeNames; }
+constexpr const auto& value_names(Method) { return kMethodNames; }
+
+// The friction parameters (FrictionParams<double>, F possibly const): the law
+// and the sign function by name, the coefficients by the friction.* rows of
+// scene/scene_params.hpp, the one list of their names, each visited as a
+// copy that is written back after the visit.
+template <class F, class V>
+void visit_friction(F& f, V&& v) {
+  v(ParamField{"law", "", "friction"}, f.law);
+  for (const SceneParamInfo& row : kSceneParams) {
+    const char* name = row.name;
+    const char* prefix = "friction.";
+    while (*prefix != '\0' && *name == *prefix) ++name, ++prefix;
+    if (*prefix != '\0') continue;
+    Scene s;
+    s.params.friction = f;
+    double x = row.get(s);
+    v(ParamField{name, row.unit, "friction"}, x);
+    if constexpr (!std::is_const_v<F>) {
+      row.set(s, x);
+      f = s.params.friction;
+    }
+  }
+  v(ParamField{"sign", "", "friction"}, f.sign);
+}
 
 // v(const ParamField&, field&) for every field of MbdParams (P: MbdParams or
 // const MbdParams); the field is a double, an int, a bool, an enum or a
 // TimeProfile.
 template <class P, class V>
 void visit_mbd_params(P& p, V&& v) {
-  const auto in = [&v](const char* group) {
-    return [&v, group](ParamField f, auto& x) {
-      f.group = group;
-      v(f, x);
-    };
-  };
   v(ParamField{"beta0_rad", "rad"}, p.beta0_rad);
   v(ParamField{"center_distance_m", "m"}, p.center_distance_m);
   v(ParamField{"link_mass_kg", "kg"}, p.link_mass_kg);
@@ -43,20 +66,17 @@ void visit_mbd_params(P& p, V&& v) {
   v(ParamField{"links", "1"}, p.links);
   v(ParamField{"link_inertia_kgm2", "kg.m^2"}, p.link_inertia_kgm2);
   v(ParamField{"sheave_deformation", ""}, p.sheave_deformation);
-  visit_friction_fields(p.friction, in("friction"));
+  visit_friction(p.friction, v);
   v(ParamField{"tau_in_Nm", "N.m"}, p.tau_in_Nm);
   v(ParamField{"tau_load_Nm", "N.m"}, p.tau_load_Nm);
-  {
-    const auto road = in("road");
-    road(ParamField{"T0_Nm", "N.m"}, p.road.T0_Nm);
-    road(ParamField{"cv_Nms_rad", "N.m.s/rad"}, p.road.cv_Nms_rad);
-    road(ParamField{"ca_Nms2_rad2", "N.m.s^2/rad^2"}, p.road.ca_Nms2_rad2);
-    road(ParamField{"w_eps_rad_s", "rad/s"}, p.road.w_eps_rad_s);
-  }
-  in("hold1")(ParamField{"active", ""}, p.hold1.active);
-  in("hold1")(ParamField{"omega_rad_s", "rad/s"}, p.hold1.omega_rad_s);
-  in("hold2")(ParamField{"active", ""}, p.hold2.active);
-  in("hold2")(ParamField{"omega_rad_s", "rad/s"}, p.hold2.omega_rad_s);
+  v(ParamField{"T0_Nm", "N.m", "road"}, p.road.T0_Nm);
+  v(ParamField{"cv_Nms_rad", "N.m.s/rad", "road"}, p.road.cv_Nms_rad);
+  v(ParamField{"ca_Nms2_rad2", "N.m.s^2/rad^2", "road"}, p.road.ca_Nms2_rad2);
+  v(ParamField{"w_eps_rad_s", "rad/s", "road"}, p.road.w_eps_rad_s);
+  v(ParamField{"active", "", "hold1"}, p.hold1.active);
+  v(ParamField{"omega_rad_s", "rad/s", "hold1"}, p.hold1.omega_rad_s);
+  v(ParamField{"active", "", "hold2"}, p.hold2.active);
+  v(ParamField{"omega_rad_s", "rad/s", "hold2"}, p.hold2.omega_rad_s);
   v(ParamField{"sheaves", ""}, p.sheaves);
   v(ParamField{"clamp1_N", "N"}, p.clamp1_N);
   v(ParamField{"clamp2_N", "N"}, p.clamp2_N);
@@ -66,14 +86,11 @@ void visit_mbd_params(P& p, V&& v) {
   v(ParamField{"sheave_stop_N_m", "N/m"}, p.sheave_stop_N_m);
   v(ParamField{"settle_s", "s"}, p.settle_s);
   v(ParamField{"settle_drag_Ns_m", "N.s/m"}, p.settle_drag_Ns_m);
-  {
-    const auto start = in("start");
-    start(ParamField{"active", ""}, p.start.active);
-    start(ParamField{"omega1_rad_s", "rad/s"}, p.start.omega1_rad_s);
-    start(ParamField{"omega2_rad_s", "rad/s"}, p.start.omega2_rad_s);
-    start(ParamField{"spinup_s", "s"}, p.start.spinup_s);
-    start(ParamField{"hold_s", "s"}, p.start.hold_s);
-  }
+  v(ParamField{"active", "", "start"}, p.start.active);
+  v(ParamField{"omega1_rad_s", "rad/s", "start"}, p.start.omega1_rad_s);
+  v(ParamField{"omega2_rad_s", "rad/s", "start"}, p.start.omega2_rad_s);
+  v(ParamField{"spinup_s", "s", "start"}, p.start.spinup_s);
+  v(ParamField{"hold_s", "s", "start"}, p.start.hold_s);
   v(ParamField{"start_r1_m", "m"}, p.start_r1_m);
   v(ParamField{"start_ratio_lock", ""}, p.start_ratio_lock);
   v(ParamField{"tolerance_link_rate_rad_s", "rad/s"}, p.tolerance_link_rate_rad_s);
@@ -88,7 +105,7 @@ void visit_run_options(P& r, V&& v) {
   v(ParamField{"rtol", "1"}, r.rtol);
   v(ParamField{"dt_s", "s"}, r.dt_s);
   v(ParamField{"sample_s", "s"}, r.sample_s);
-  v(ParamField{"max_steps", "1", ParamFit::none, 1.0, "", true}, r.max_steps);
+  v(ParamField{"max_steps", "1", "", true}, r.max_steps);
   v(ParamField{"ledger_tol", "1"}, r.ledger_tol);
   v(ParamField{"settle_rtol", "1"}, r.settle_rtol);
 }

@@ -5,18 +5,23 @@
 // the Jacobian at the optimum, and the parameter file and C++ header that
 // carry the result.
 #include <array>
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
 
-#include "cvtplant/physics/param_field.hpp"
 #include "cvtplant/plant/rom_params.hpp"
 #include "cvtplant/scene/scene.hpp"
+#include "cvtplant/scene/scene_params.hpp"
 #include "cvtplant/validation/cache.hpp"
 #include "cvtplant/validation/compare.hpp"
 #include "cvtplant/validation/series.hpp"
 
 namespace cvt::validation {
+
+// How calibrate fits a parameter (docs/validation.md#calibration): as a
+// positive value on a log scale, or as a share in (0, 1) on a logit scale.
+enum class ParamFit : std::uint8_t { positive, share };
 
 // The quantities fitted, in the order of the residual vector within a case.
 struct FitQuantity {
@@ -29,8 +34,9 @@ inline constexpr FitQuantity kFitQuantities[] = {{"omega1", &Series::omega1_rad_
                                                  {"torque_driver", &Series::torque_driver_Nm}};
 inline constexpr int kFitQuantityCount = 4;
 
-// The parameters calibrate can fit: every RomParams field whose ParamFit is
-// not none (plant/rom_param_fields.hpp), in the list's order.
+// The parameters calibrate can fit, by their [params] key: the plant's
+// lumped, effective values (the others are physical values the reference
+// shares); each is a row of scene/scene_params.hpp.
 std::vector<std::string> fittable_names();
 
 // One scene of the fit: the plant's scene (its parameters the start's) and
@@ -94,6 +100,7 @@ class Calibration {
   struct Fitted {
     std::string name;
     ParamFit fit;
+    const cvt::SceneParamInfo* row;
   };
   std::vector<Fitted> fit_;
   cvt::RomParams base_;

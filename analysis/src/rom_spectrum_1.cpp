@@ -1,0 +1,7 @@
+// The ROM spectrum and trajectory for the plants of state count
+// kRomStateCounts[1] (rom_scenes_detail.hpp), one translation unit per count.
+#include "rom_scenes_flow.hpp"
+
+namespace cvt::analysis::rom_detail {
+CVT_ROM_SCENES_INSTANTIATE(1)
+}  // namespace cvt::analysis::rom_detail
