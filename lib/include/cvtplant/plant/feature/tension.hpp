@@ -199,7 +199,7 @@ class RomTension<Cfg, true> {
     jac.slip(0, L::kX2, c_x);
     jac.slip(0, L::kV1, c_xd);
     jac.slip(0, L::kV2, c_xd);
-    jac.slip(0, L::kW2, c_w2);
+    if (!k.hold2) jac.slip(0, L::kW2, c_w2);  // a held driven pulley's speed is no state
     if (sp.Fc != T(0))
       for (int i = 0; i < dfc.n; ++i) jac.slip(0, dfc.col[i], -in_tension_unit(gve * (sp.Fc * dfc.val[i])));
     if constexpr (Cfg::kRadial) {
