@@ -7,8 +7,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 
+#include "chain_solver.hpp"
 #include "integrators.hpp"
 #include "sundials_kernels.hpp"
 
@@ -18,8 +20,9 @@ namespace {
 
 class Bdf final : public Integrator {
  public:
-  Bdf(const ChainModel& m, double t0, const double* y0, double rtol, long long step_cap, bool stop_at_outputs)
-      : m_(m), rtol_(rtol), cap_(step_cap), t_(t0), stop_at_outputs_(stop_at_outputs) {
+  Bdf(const ChainModel& m, double t0, const double* y0, double rtol, long long step_cap, bool stop_at_outputs,
+      LinearSolver solver)
+      : m_(m), rtol_(rtol), cap_(step_cap), t_(t0), stop_at_outputs_(stop_at_outputs), solver_(solver) {
     try {
       create(y0);
     } catch (...) {
@@ -94,6 +97,20 @@ class Bdf final : public Integrator {
     check(CVodeInit(mem_, &Bdf::f, t0, y_), "CVodeInit");
     check(CVodeSetUserData(mem_, this), "CVodeSetUserData");
     check(CVodeWFtolerances(mem_, &Bdf::weights), "CVodeWFtolerances");
+    if (solver_ == LinearSolver::chain) {
+      // docs/mbd.md#linear-algebra: CVODE hands over gamma and whether J is
+      // still good; the solver keeps J and factors I - gamma J in its blocks.
+      A_ = make_chain_placeholder_matrix(ctx_);
+      try {
+        LS_ = make_chain_linear_solver(m_, ctx_);
+      } catch (const std::logic_error& e) {
+        throw RunFailure(t0, std::string("chain linear solver: ") + e.what());
+      }
+      if (A_ == nullptr || LS_ == nullptr) throw RunFailure(t0, "chain linear solver could not be created");
+      check(CVodeSetLinearSolver(mem_, LS_, A_), "CVodeSetLinearSolver");
+      check(CVodeSetLinSysFn(mem_, &Bdf::linear_system), "CVodeSetLinSysFn");
+      return;
+    }
     A_ = SUNSparseMatrix(n, n, m_.pattern().nnz(), CSC_MAT, ctx_);
     LS_ = SUNLinSol_KLU(y_, A_, ctx_);
     if (A_ == nullptr || LS_ == nullptr) throw RunFailure(t0, "KLU sparse solver could not be created");
@@ -103,6 +120,15 @@ class Bdf final : public Integrator {
     check(SUNLinSol_KLUSetOrdering(LS_, 0), "SUNLinSol_KLUSetOrdering");
     check(CVodeSetLinearSolver(mem_, LS_, A_), "CVodeSetLinearSolver");
     check(CVodeSetJacFn(mem_, &Bdf::jac), "CVodeSetJacFn");
+  }
+
+  static int linear_system(double t, N_Vector y, N_Vector, SUNMatrix, booleantype jok, booleantype* jcur,
+                           double gamma, void* user, N_Vector, N_Vector, N_Vector) {
+    auto* self = static_cast<Bdf*>(user);
+    int fresh = 0;
+    const int r = chain_linear_system(self->LS_, self->m_, t, N_VGetArrayPointer(y), jok != 0, &fresh, gamma);
+    *jcur = fresh != 0 ? SUNTRUE : SUNFALSE;
+    return r;
   }
 
   void release() {
@@ -192,6 +218,7 @@ class Bdf final : public Integrator {
   long long cap_;
   double t_;
   bool stop_at_outputs_;
+  LinearSolver solver_;
   SolverCounters before_;  // work before the last reinit (counters() and the cap run on)
   SUNContext ctx_ = nullptr;
   N_Vector y_ = nullptr;
@@ -205,8 +232,8 @@ class Bdf final : public Integrator {
 }  // namespace
 
 std::unique_ptr<Integrator> make_bdf(const ChainModel& m, double t0, const double* y0, double rtol,
-                                     long long step_cap, bool stop_at_outputs) {
-  return std::make_unique<Bdf>(m, t0, y0, rtol, step_cap, stop_at_outputs);
+                                     long long step_cap, bool stop_at_outputs, LinearSolver solver) {
+  return std::make_unique<Bdf>(m, t0, y0, rtol, step_cap, stop_at_outputs, solver);
 }
 
 }  // namespace cvt::mbd::detail

@@ -23,12 +23,14 @@ class Integrator {
   virtual void set_step_cap(long long cap) = 0;
 };
 
-// SUNDIALS CVODE, BDF with Newton iteration, KLU sparse direct solver and the
-// model's sparse Jacobian. step_cap bounds the total steps.
+// SUNDIALS CVODE, BDF with Newton iteration on the model's sparse Jacobian,
+// its linear systems by the chain's block elimination or KLU
+// (docs/mbd.md#linear-algebra). step_cap bounds the total steps.
 // stop_at_outputs: never step past a requested time (the inputs may change
 // there, docs/mbd.md#stepping); otherwise CVODE steps past and interpolates.
 std::unique_ptr<Integrator> make_bdf(const ChainModel& m, double t0_s, const double* y0, double rtol,
-                                     long long step_cap, bool stop_at_outputs = false);
+                                     long long step_cap, bool stop_at_outputs = false,
+                                     LinearSolver solver = LinearSolver::chain);
 
 // docs/mbd.md#start-up: the settle at rest and, for a start at speed, the
 // spin-up and the hold, from the model's initial state to the release at

@@ -105,7 +105,10 @@ ChainModel::ChainModel(const MbdParams& p) : p_(p), geo_(p.r1_m, p.r2_m, p.cente
     pc.oy_m = geo_.centre[j].y;
     pc.width_at_axis_m = 2.0 * geo_.r_m[j] * sin(p.beta0_rad) / cos(p.beta0_rad);
     pc.beta0_rad = p.beta0_rad;
+    pc.cos_beta0 = cos(p.beta0_rad);
+    pc.sin_beta0 = sin(p.beta0_rad);
     pc.half_amp_rad = 0.5 * amp;
+    require(std::fabs(pc.half_amp_rad) <= 0.01, "sheave deformation amplitude Delta/2 within 0.01 rad");
     pc.wx = cos(geo_.entry_angle_rad[j] + centre);
     pc.wy = sin(geo_.entry_angle_rad[j] + centre);
     // Fixed groove: a bolt is compressed only inside r tan(beta0)/tan(beta_min)
@@ -288,7 +291,9 @@ bool ChainModel::rhs(double t_s, const double* y, double* dydt) const {
   double p_damp = 0, p_fric = 0;
   for (int i = 0; i < n_links_; ++i) {
     const int b = (i + 1 == n_links_) ? 0 : i + 1;
-    const auto jf = joint(y, i);
+    const auto a = static_cast<std::size_t>(i), bb = static_cast<std::size_t>(b);
+    const auto jf =
+        detail::joint_forces<double, false>(chain(), y + 6 * i, cos_[a], sin_[a], y + 6 * b, cos_[bb], sin_[bb]);
     for (int k = 0; k < 3; ++k) {
       force_[3 * i + k] += jf.fa[k];
       force_[3 * b + k] += jf.fb[k];
@@ -463,7 +468,7 @@ void ChainModel::jacobian(double t_s, const double* y, double* values) const {
     }
     const D12 ca = cos(a_d[2]), sa = sin(a_d[2]);
     const D12 cb = cos(b_d[2]), sb = sin(b_d[2]);
-    const auto jf = detail::joint_forces<D12>(chain(), a_d, ca, sa, b_d, cb, sb);
+    const auto jf = detail::joint_forces<D12, false>(chain(), a_d, ca, sa, b_d, cb, sb);
     for (int v = 0; v < 12; ++v) {
       const int col = v < 6 ? 6 * i + v : 6 * b + (v - 6);
       for (int k = 0; k < 3; ++k) {

@@ -53,7 +53,8 @@ void start_at_speed(ChainModel& model, std::vector<double>& y, const RunOptions&
   };
   model.set_phase(ChainModel::Phase::spinup);
   {
-    auto spin = detail::make_bdf(model, model.spinup_start_s(), y.data(), opt.settle_rtol, kSettleStepCap);
+    auto spin = detail::make_bdf(model, model.spinup_start_s(), y.data(), opt.settle_rtol, kSettleStepCap, false,
+                                 opt.linear_solver);
     spin->advance_to(model.hold_start_s(), y.data());
     stats.start_steps += spin->counters().steps;
   }
@@ -62,7 +63,8 @@ void start_at_speed(ChainModel& model, std::vector<double>& y, const RunOptions&
   y[static_cast<std::size_t>(model.pulley_speed(1))] = st.omega2_rad_s;
   check(model.hold_start_s(), "spin-up to speed");
   model.set_phase(ChainModel::Phase::hold);
-  auto hold = detail::make_bdf(model, model.hold_start_s(), y.data(), opt.settle_rtol, kSettleStepCap);
+  auto hold = detail::make_bdf(model, model.hold_start_s(), y.data(), opt.settle_rtol, kSettleStepCap, false,
+                               opt.linear_solver);
   const long long n = std::max<long long>(1, std::llround(st.hold_s / 1e-3));
   stats.hold_samples.clear();
   stats.hold_samples.push_back(model.sample(model.hold_start_s(), y.data()));
@@ -85,7 +87,8 @@ void detail::settle_and_start(ChainModel& model, std::vector<double>& y, const R
   if (params.settle_s > 0) {
     model.set_phase(ChainModel::Phase::settle);
     // The settle is fixed work (a few thousand steps), outside the user's cap.
-    auto settle = detail::make_bdf(model, model.settle_start_s(), y.data(), opt.settle_rtol, kSettleStepCap);
+    auto settle = detail::make_bdf(model, model.settle_start_s(), y.data(), opt.settle_rtol, kSettleStepCap, false,
+                                   opt.linear_solver);
     settle->advance_to(model.spinup_start_s(), y.data());
     const std::string bad = model.state_problem(y.data());
     if (!bad.empty()) throw RunFailure(model.spinup_start_s(), "settling: " + bad);
@@ -167,7 +170,7 @@ RunStats simulate(const MbdParams& params, const RunOptions& opt, const SampleSi
     sample_s = static_cast<double>(per) * opt.dt_s;
     integ = detail::make_rk4(model, 0.0, y.data(), opt.dt_s, opt.max_steps);
   } else {
-    integ = detail::make_bdf(model, 0.0, y.data(), opt.rtol, opt.max_steps);
+    integ = detail::make_bdf(model, 0.0, y.data(), opt.rtol, opt.max_steps, false, opt.linear_solver);
   }
   samples_after_0 = static_cast<long long>(std::ceil(opt.t_end_s / sample_s - 1e-9));
 

@@ -86,6 +86,7 @@ Stepper::Stepper(const MbdParams& params, const StepperOptions& options) : opt_(
   try {
     RunOptions ro;
     ro.settle_rtol = opt_.settle_rtol;
+    ro.linear_solver = opt_.linear_solver;
     detail::settle_and_start(*model_, y_, ro, start_);
   } catch (const RunFailure& e) {
     fail(classify(e.quantity), e.what());
@@ -119,7 +120,8 @@ void Stepper::release_at(const MbdParams& params) {
   start_.energy0_J = energy0_J_;
   start_.ledger_floor_J = floor_J_;
   try {
-    solver_->integ = detail::make_bdf(*model_, 0.0, y_.data(), opt_.rtol, opt_.max_steps_per_frame, true);
+    solver_->integ = detail::make_bdf(*model_, 0.0, y_.data(), opt_.rtol, opt_.max_steps_per_frame, true,
+                                        opt_.linear_solver);
   } catch (const RunFailure& e) {
     fail(StepFault::solver, e.what());
     return;

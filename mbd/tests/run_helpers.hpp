@@ -31,6 +31,17 @@ inline Recorded record(const MbdParams& p, const RunOptions& o, const std::vecto
   return r;
 }
 
+// The full state (ledger included) at the sample at time t of a run of p.
+inline std::vector<double> state_at(const MbdParams& p, double t, RunOptions o = {}) {
+  std::vector<double> y;
+  o.t_end_s = t;
+  o.sample_s = t;
+  simulate(p, o, [&](const Sample& s, const ChainModel& m, const double* yy) {
+    if (s.t_s >= t - 1e-12) y.assign(yy, yy + m.size());
+  });
+  return y;
+}
+
 inline double rel_diff(double a, double b) { return std::fabs(a - b) / std::max(std::fabs(a), std::fabs(b)); }
 
 // The seed's geometry, restated here from Table 1 so the checks do not lean

@@ -43,6 +43,8 @@ detail::PulleyConst driver() {
   pc.oy_m = 0;
   pc.width_at_axis_m = 2.0 * kR1 * std::tan(kBeta0);
   pc.beta0_rad = kBeta0;
+  pc.cos_beta0 = std::cos(kBeta0);
+  pc.sin_beta0 = std::sin(kBeta0);
   pc.half_amp_rad = 0.5 * cvt::seed::deformation_amplitude_rad(kR1 / kR2);
   const double c = g.entry_angle_rad[0] + cvt::seed::deformation_centre_rad(kR1 / kR2);
   pc.wx = std::cos(c);

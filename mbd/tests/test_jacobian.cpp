@@ -11,19 +11,9 @@
 #include "run_helpers.hpp"
 
 using namespace cvt::mbd;
+using cvt::mbd::testing::state_at;
 
 namespace {
-
-std::vector<double> state_at(const MbdParams& p, double t) {
-  std::vector<double> y;
-  RunOptions o;
-  o.t_end_s = t;
-  o.sample_s = t;
-  simulate(p, o, [&](const Sample& s, const ChainModel& m, const double* yy) {
-    if (s.t_s >= t - 1e-12) y.assign(yy, yy + m.size());
-  });
-  return y;
-}
 
 void check_jacobian(const MbdParams& p, double t, ChainModel::Phase phase = ChainModel::Phase::run) {
   std::vector<double> y = state_at(p, t);

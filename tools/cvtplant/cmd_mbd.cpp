@@ -1,5 +1,5 @@
 // `cvtplant mbd`: the multibody chain CVT, the offline reference (docs/cli.md#mbd,
-// docs/mbd.md): seed case 1 or 2, BDF (CVODE + KLU) or the seed's RK4, a CSV
+// docs/mbd.md): seed case 1 or 2, BDF (CVODE) or the seed's RK4, a CSV
 // per sample, a JSON or text summary, a progress bar on a terminal.
 #include "cmd_mbd.hpp"
 
@@ -114,11 +114,16 @@ void add_model_options(CLI::App* sub, ModelOptions& o) {
                                  "Driver clamping force for --sheaves clamped: F, or a profile t:F,t:F,... [s:N], F in [100, 1e5]");
   o.clamp2_opt = sub->add_option("--clamp2-N", o.clamp2,
                                  "Driven clamping force (default: driver's times the static thrust ratio theta2/theta1)");
-  sub->add_option("--method", o.method, "bdf (CVODE BDF + KLU) | rk4 (fixed step, the seed's method)")
+  sub->add_option("--method", o.method, "bdf (CVODE BDF, --linear-solver) | rk4 (fixed step, the seed's method)")
       ->capture_default_str()
       ->check(CLI::IsMember({"bdf", "rk4"}));
   o.dt_opt = sub->add_option("--dt", o.dt_s, "RK4 step [s], [1e-8, 1e-4] (default 1e-6)");
   o.rtol_opt = sub->add_option("--rtol", o.rtol, "BDF relative tolerance, [1e-11, 1e-3] (default 5e-7)");
+  o.solver_opt = sub->add_option("--linear-solver", o.linear_solver,
+                                 "BDF Newton systems: chain (block elimination along the chain) | klu (sparse LU); "
+                                 "docs/mbd.md#linear-algebra")
+                     ->capture_default_str()
+                     ->check(CLI::IsMember({"chain", "klu"}));
   o.links_opt = sub->add_option("--links", o.links, "Number of links N of the seed set, [36, 53]; sets the pretension")
                     ->capture_default_str();
   sub->add_option("--sample", o.sample_s, "Output interval [s], [1e-6, t-end]")->capture_default_str();
@@ -155,6 +160,8 @@ void validate(const ModelOptions& o) {
     require_range(o.rtol, 1e-11, 1e-3, "--rtol", "");
   } else {
     if (o.rtol_opt != nullptr && o.rtol_opt->count() > 0) throw UsageError{"--rtol applies to --method bdf only"};
+    if (o.solver_opt != nullptr && o.solver_opt->count() > 0)
+      throw UsageError{"--linear-solver applies to --method bdf only"};
     require_range(o.dt_s, 1e-8, 1e-4, "--dt", "s");
     if (o.sample_s < o.dt_s) throw UsageError{"--sample: must be at least --dt"};
     const double steps = std::round(o.t_end_s / o.dt_s);
@@ -204,6 +211,7 @@ cvt::mbd::RunOptions run_options_for(const ModelOptions& o) {
   r.method = o.method == "rk4" ? Method::rk4 : Method::bdf;
   r.t_end_s = o.t_end_s;
   r.rtol = o.rtol;
+  r.linear_solver = o.linear_solver == "klu" ? cvt::mbd::LinearSolver::klu : cvt::mbd::LinearSolver::chain;
   r.dt_s = o.dt_s;
   r.sample_s = o.sample_s;
   r.max_steps = o.max_steps;
@@ -221,7 +229,7 @@ std::string num(double v) {
 }
 
 std::string method_label(const ModelOptions& o) {
-  return o.method == "rk4" ? "RK4 dt " + num(o.dt_s) + " s" : "BDF+KLU rtol " + num(o.rtol);
+  return o.method == "rk4" ? "RK4 dt " + num(o.dt_s) + " s" : "BDF (" + o.linear_solver + ") rtol " + num(o.rtol);
 }
 
 std::string case_label(int c) { return c == 1 ? "case 1 (Coulomb)" : "case 2 (Stribeck)"; }
@@ -343,6 +351,7 @@ nlohmann::json summary_json(const ModelOptions& o, int friction_case, const RunO
   j["case"] = o.production() ? nlohmann::json(nullptr) : nlohmann::json(friction_case);
   j["friction"] = o.production() ? "production" : friction_case == 1 ? "case1" : "case2";
   j["method"] = o.method;
+  if (o.method == "bdf") j["linear_solver"] = o.linear_solver;
   j["rtol"] = o.method == "bdf" ? nlohmann::json(o.rtol) : nlohmann::json(nullptr);
   j["dt_s"] = o.method == "rk4" ? nlohmann::json(o.dt_s) : nlohmann::json(nullptr);
   j["sheaves"] = o.sheave_mode();

@@ -23,6 +23,7 @@ struct ModelOptions {
   std::string method = "bdf";
   double dt_s = 1e-6;
   double rtol = 5e-7;
+  std::string linear_solver = "chain";  // the BDF's Newton systems: chain | klu (docs/mbd.md#linear-algebra)
   int links = 44;
   double sample_s = 1e-3;
   std::string tau_in = "100", tau_load = "50";  // "T" or "t:T,t:T,..." [s:N m]
@@ -34,6 +35,7 @@ struct ModelOptions {
   // set by CLI11 when given (options that only apply to one method or mode)
   CLI::Option* dt_opt = nullptr;
   CLI::Option* rtol_opt = nullptr;
+  CLI::Option* solver_opt = nullptr;
   CLI::Option* clamp1_opt = nullptr;
   CLI::Option* clamp2_opt = nullptr;
   CLI::Option* road_opt = nullptr;

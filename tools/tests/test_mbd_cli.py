@@ -142,6 +142,8 @@ class BadInput(unittest.TestCase):
         self.bad("--case", "1", "--dt", "1e-6", needle="--dt")
         self.bad("--case", "1", "--method", "rk4", "--rtol", "1e-6", needle="--rtol")
         self.bad("--case", "1", "--method", "euler", needle="--method")
+        self.bad("--case", "1", "--linear-solver", "lapack", needle="--linear-solver")
+        self.bad("--case", "1", "--method", "rk4", "--linear-solver", "klu", needle="--linear-solver")
         self.bad("--case", "1", "--sheaves", "clamped", needle="--clamp-N")
         self.bad("--case", "1", "--clamp-N", "3300", needle="--clamp-N")
         self.bad("--case", "1", "--sheaves", "floating", needle="--sheaves")

@@ -82,7 +82,7 @@ TEST_SUITE("cache") {
     const cvt::mbd::MbdParams p = cvt::mbd::seed_case(2);
     const cvt::mbd::RunOptions base;
     const std::string key = reference_key(p, base);
-    for (int i = 0; i < 8; ++i) {
+    for (int i = 0; i < 9; ++i) {
       cvt::mbd::RunOptions r = base;
       Perturb change(i);
       cvt::mbd::visit_run_options(r, change);

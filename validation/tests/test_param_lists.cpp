@@ -130,9 +130,9 @@ TEST_SUITE("param_lists") {
     cvt::mbd::RunOptions r;
     Visited v;
     cvt::mbd::visit_run_options(r, v);
-    auto& [o0, o1, o2, o3, o4, o5, o6, o7] = r;
-    CHECK(unvisited(v, o0, o1, o2, o3, o4, o5, o6, o7) == 0);
-    CHECK(v.count == 8);
+    auto& [o0, o1, o2, o3, o4, o5, o6, o7, o8] = r;
+    CHECK(unvisited(v, o0, o1, o2, o3, o4, o5, o6, o7, o8) == 0);
+    CHECK(v.count == 9);
   }
 
   TEST_CASE("RomParams and RomInitial: every number and flag is one row of the scene's parameter list") {

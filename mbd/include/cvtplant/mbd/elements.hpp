@@ -80,8 +80,9 @@ struct JointForces {
 
 // Link a's front pin joined to link b's rear pin; (ca, sa), (cb, sb) are the
 // cosine and sine of the links' angles (computed once per link by the caller).
-// docs/mbd.md#joint
-template <class S>
+// kOutputs false: the forces and the dissipation only (the right-hand side);
+// tension, stretch and potential are left zero. docs/mbd.md#joint
+template <class S, bool kOutputs = true>
 JointForces<S> joint_forces(const ChainConst& c, const S* a, const S& ca, const S& sa, const S* b, const S& cb,
                             const S& sb) {
   const double h = c.half_length_m;
@@ -113,10 +114,13 @@ JointForces<S> joint_forces(const ChainConst& c, const S* a, const S& ca, const 
   const S wrel = a[5] - b[5];
   f.fa[2] = -(c.k_N_m * (dx * gax + dy * gay)) - c.p_Ns_m * (rx * (gax + hx) + ry * (gay + hy)) - c.c_rot_Nms * wrel;
   f.fb[2] = -(c.k_N_m * (dx * gbx + dy * gby)) - c.p_Ns_m * (rx * (gbx + hx) + ry * (gby + hy)) + c.c_rot_Nms * wrel;
-  const S len2 = dx * dx + dy * dy;
-  f.stretch_m = norm(dx, dy);
-  f.tension_N = value(f.stretch_m) > 0 ? (Fx * dx + Fy * dy) / f.stretch_m : S(0.0);
-  f.potential_J = 0.5 * c.k_N_m * len2;
+  if constexpr (kOutputs) {
+    f.stretch_m = norm(dx, dy);
+    f.tension_N = value(f.stretch_m) > 0 ? (Fx * dx + Fy * dy) / f.stretch_m : S(0.0);
+    f.potential_J = 0.5 * c.k_N_m * (dx * dx + dy * dy);
+  } else {
+    f.stretch_m = f.tension_N = f.potential_J = S(0.0);
+  }
   f.dissipation_W = c.p_Ns_m * (rx * rx + ry * ry) + c.c_rot_Nms * wrel * wrel;
   return f;
 }
@@ -126,10 +130,26 @@ struct PulleyConst {
   double ox_m, oy_m;         // centre
   double width_at_axis_m;    // 2 r_p tan(beta0): the bolt is unloaded at the pitch radius
   double beta0_rad;
-  double half_amp_rad;       // Delta/2 of Eq. 3 (0: no deformation)
+  double cos_beta0, sin_beta0;  // of beta0, the core's cos and sin
+  double half_amp_rad;       // Delta/2 of Eq. 3 (0: no deformation); at most 0.01 rad (flank_cos_sin)
   double wx, wy;             // unit vector towards the wrap angle of maximum deformation
   double reject_radius_m;    // beyond this radius no bolt can be compressed
 };
+
+// cos(beta) and sin(beta) of the flank angle beta = beta0 + d of Eq. 3, d the
+// deformation's share (|d| <= Delta/2, 2.8e-4 rad for the seed's radii):
+// the angle-sum formula with cos d to d^6 and sin d to d^7, whose next terms
+// (d^8/8!, d^9/9!) are below 1e-20 relative for |d| <= 0.01 rad (the model
+// requires it): correct to the rounding of double (within an ulp or two of
+// cos(beta), sin(beta)), without two sine/cosine evaluations per contact.
+template <class S>
+void flank_cos_sin(const PulleyConst& pc, const S& d, S& cb, S& sb) {
+  const S d2 = d * d;
+  const S cd = 1.0 - d2 * (1.0 / 2.0 - d2 * (1.0 / 24.0 - d2 * (1.0 / 720.0)));
+  const S sd = d * (1.0 - d2 * (1.0 / 6.0 - d2 * (1.0 / 120.0 - d2 * (1.0 / 5040.0))));
+  cb = pc.cos_beta0 * cd - pc.sin_beta0 * sd;
+  sb = pc.sin_beta0 * cd + pc.cos_beta0 * sd;
+}
 
 template <class S>
 struct ContactForces {
@@ -160,8 +180,8 @@ ContactForces<S> contact_forces(const ChainConst& c, const PulleyConst& pc, cons
   const S tx = -ey, ty = ex;             // tangential (running direction)
   // Eq. 3: beta = beta0 + Delta/2 cos(zeta - theta_c), zeta measured from the
   // wrap entry; cos(zeta - theta_c) = e_rho . w.
-  const S beta = pc.beta0_rad + pc.half_amp_rad * (ex * pc.wx + ey * pc.wy);
-  const S cb = cos(beta), sb = sin(beta);
+  S cb, sb;
+  flank_cos_sin(pc, pc.half_amp_rad * (ex * pc.wx + ey * pc.wy), cb, sb);
   const S tanb = sb / cb;
   // Eq. 5 with the local groove width z + u = l_b + 2 rho tan(beta) - 2 r_p tan(beta0) + s:
   // compression l_b - z - u = 2 r_p tan(beta0) - 2 rho tan(beta) - s.

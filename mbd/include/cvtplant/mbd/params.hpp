@@ -18,7 +18,7 @@ namespace cvt::mbd {
 // start-up or the numerics changes what a run with the same inputs produces,
 // so stored reference runs (`cvtplant validate`, `cvtplant calibrate`) are
 // recomputed rather than reused.
-inline constexpr int kReferenceVersion = 1;
+inline constexpr int kReferenceVersion = 2;
 
 // Fixed sheaves: the groove is rigid and fixed on the shaft (the seed's
 // pulleys). Clamped: one sheave of each pulley is free to move axially and is

@@ -19,7 +19,10 @@ inline constexpr NamedValue<SheaveMode> kSheaveModeNames[] = {{"fixed", SheaveMo
                                                               {"clamped", SheaveMode::clamped}};
 inline constexpr NamedValue<Method> kMethodNames[] = {{"bdf", Method::bdf}, {"rk4", Method::rk4}};
 constexpr const auto& value_names(SheaveMode) { return kSheaveModeNames; }
+inline constexpr NamedValue<LinearSolver> kLinearSolverNames[] = {{"chain", LinearSolver::chain},
+                                                                   {"klu", LinearSolver::klu}};
 constexpr const auto& value_names(Method) { return kMethodNames; }
+constexpr const auto& value_names(LinearSolver) { return kLinearSolverNames; }
 
 // The friction parameters (FrictionParams<double>, F possibly const): the law
 // and the sign function by name, the coefficients by the friction.* rows of
@@ -108,6 +111,7 @@ void visit_run_options(P& r, V&& v) {
   v(ParamField{"max_steps", "1", "", true}, r.max_steps);
   v(ParamField{"ledger_tol", "1"}, r.ledger_tol);
   v(ParamField{"settle_rtol", "1"}, r.settle_rtol);
+  v(ParamField{"linear_solver", ""}, r.linear_solver);
 }
 
 }  // namespace cvt::mbd

@@ -15,6 +15,11 @@ namespace cvt::mbd {
 
 enum class Method { bdf, rk4 };
 
+// How the BDF solves its Newton systems (docs/mbd.md#linear-algebra): the
+// chain's own block elimination (a closed chain of links bordered by the
+// pulleys and sheaves), or SUNDIALS' KLU sparse LU on the same Jacobian.
+enum class LinearSolver { chain, klu };
+
 struct RunOptions {
   Method method = Method::bdf;
   double t_end_s = 1.0;
@@ -24,6 +29,7 @@ struct RunOptions {
   long long max_steps = 100000000;  // cap on integrator steps (work); exceeding it stops the run
   double ledger_tol = 1e-6;     // the run stops when the energy ledger is off by more (relative)
   double settle_rtol = 1e-8;    // the start-up settle, the same for every method and tolerance
+  LinearSolver linear_solver = LinearSolver::chain;  // bdf (and the start-up)
 };
 
 // What the integrator did (RK4: steps and 4 right-hand sides per step).

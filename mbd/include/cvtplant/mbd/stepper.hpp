@@ -60,6 +60,7 @@ struct StepperOptions {
   long long max_steps_per_frame = 200000;  // integrator steps a frame may take before it faults
   double ledger_tol = 1e-6;           // relative ledger residual that faults the run
   double settle_rtol = 1e-8;          // the start-up (docs/mbd.md#start-up)
+  LinearSolver linear_solver = LinearSolver::chain;  // docs/mbd.md#linear-algebra
 };
 
 class Stepper {
