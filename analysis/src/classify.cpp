@@ -24,29 +24,14 @@ double quarter_std(const std::vector<double>& x, int q) {
 
 }  // namespace
 
-// docs/analysis.md#spectral-peaks: Hann periodogram, peaks within 20 dB of the
-// maximum, frequencies refined by parabolic interpolation of ln P.
+// docs/analysis.md#spectral-lines: the lines within 20 dB of the strongest
+// (in cycles per sample), the lowest taken as the fundamental.
 SpectralPeaks spectral_peaks(const std::vector<double>& x) {
   SpectralPeaks r;
-  const Spectrum s = periodogram(x);
-  const std::size_t K = s.power.size();
-  double pmax = 0;
-  for (std::size_t k = 1; k < K; ++k) pmax = std::max(pmax, s.power[k]);
-  if (!(pmax > 0)) return r;
-  std::vector<std::pair<double, double>> pk;  // (power, freq)
-  const double df = s.freq[1];
-  for (std::size_t k = 2; k + 1 < K; ++k) {
-    if (s.power[k] < 0.01 * pmax) continue;
-    if (!(s.power[k] > s.power[k - 1] && s.power[k] >= s.power[k + 1])) continue;
-    const double a = std::log(s.power[k - 1]), b = std::log(s.power[k]), c = std::log(s.power[k + 1]);
-    const double den = a - 2 * b + c;
-    const double delta = den != 0 ? 0.5 * (a - c) / den : 0.0;
-    pk.push_back({s.power[k], s.freq[k] + delta * df});
-  }
-  std::sort(pk.rbegin(), pk.rend());
-  if (pk.size() > 20) pk.resize(20);
-  for (const auto& p : pk) r.freq.push_back(p.second);
+  const Lines lines = spectral_lines(x, 1.0, 20);
+  r.freq = lines.Hz;
   if (r.freq.empty()) return r;
+  const double df = lines.resolution_Hz;
   r.fundamental = *std::min_element(r.freq.begin(), r.freq.end());
   // A fundamental within 3 bins of DC cannot be resolved: no verdict.
   if (r.fundamental < 3 * df) return r;
@@ -126,6 +111,7 @@ Classification classify(const std::vector<double>& x, const ClassifyOptions& opt
   c.reasons.push_back(fmt("0-1 test K = %.3f (IQR %.3f..%.3f)", c.t01.k_median, c.t01.k_q25, c.t01.k_q75));
   // Exponent in units of the mean period: how many e-folds per cycle.
   const double period_s = mean_period_samples(z) * opt.dt;
+  c.mean_period_s = period_s;
   const double lam = c.lle.fit.slope, ci = c.lle.fit.ci95;
   c.reasons.push_back(fmt("largest exponent (Rosenstein) %.4g +- %.2g per unit time, %.3g per mean period", lam, ci,
                           lam * period_s));

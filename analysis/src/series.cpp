@@ -143,6 +143,35 @@ Spectrum periodogram(const std::vector<double>& x) {
   return s;
 }
 
+// docs/analysis.md#spectral-lines
+Lines spectral_lines(const std::vector<double>& x, double dt, int count, double min_Hz) {
+  Lines r;
+  const Spectrum s = periodogram(x);
+  const std::size_t K = s.power.size();
+  if (K < 4) return r;
+  r.resolution_Hz = s.freq[1] / dt;
+  double pmax = 0;
+  for (std::size_t k = 1; k < K; ++k)
+    if (s.freq[k] / dt >= min_Hz) pmax = std::max(pmax, s.power[k]);
+  if (!(pmax > 0)) return r;
+  std::vector<std::pair<double, double>> pk;  // (power, Hz)
+  for (std::size_t k = 2; k + 1 < K; ++k) {
+    if (s.freq[k] / dt < min_Hz || s.power[k] < 0.01 * pmax) continue;
+    if (!(s.power[k] > s.power[k - 1] && s.power[k] >= s.power[k + 1])) continue;
+    const double a = std::log(s.power[k - 1]), b = std::log(s.power[k]), c = std::log(s.power[k + 1]);
+    const double den = a - 2 * b + c;
+    const double delta = den != 0 ? 0.5 * (a - c) / den : 0.0;
+    pk.push_back({s.power[k], (s.freq[k] + delta * s.freq[1]) / dt});
+  }
+  std::sort(pk.rbegin(), pk.rend());
+  if (pk.size() > static_cast<std::size_t>(std::max(count, 0))) pk.resize(static_cast<std::size_t>(std::max(count, 0)));
+  for (const auto& p : pk) {
+    r.Hz.push_back(p.second);
+    r.power_rel.push_back(p.first / pmax);
+  }
+  return r;
+}
+
 double mean_period_samples(const std::vector<double>& x) {
   const Spectrum s = periodogram(x);
   double num = 0, den = 0;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cmd_analyze.hpp"
+#include "cmd_seed_section4_reference.hpp"
 #include "io_util.hpp"
 #include "model_resolve.hpp"
 #include "progress.hpp"
@@ -307,7 +308,8 @@ Tool add_seed_section4(CLI::App* an) {
                                "the seed's section 4 pipeline on ROM plant signals (1 ms samples, transient removed, "
                                "normalised, AMI delay, FNN/Cao dimension, Rosenstein/Kantz exponent, recurrence "
                                "plot + RQA, 0-1 test, verdict) with figures and a JSON summary");
-  c->add_option("--scene", a->scene, "plant scene: built-in (seed-case1, seed-case2, ...; see cvtplant scenes) or a TOML scene file")->required();
+  c->add_option("--scene", a->scene, "plant scene: built-in (seed-case1, seed-case2, ...; see cvtplant scenes) or a TOML scene file");
+  const auto reference = cvtcli::add_section4_reference(c);
   c->add_option("--out-dir", a->out_dir, "output directory: <signal>/*.png and summary.json")->required();
   c->add_option("--signals", a->signals, "comma-separated plant outputs (F_ax, torque_transmitted, slip, v_rel1, ...)");
   cvtcli::add_real(c, "--t-end", a->t_end, {0, 1e5, true}, "simulated time [s] (default: the scene's)");
@@ -316,7 +318,9 @@ Tool add_seed_section4(CLI::App* an) {
   cvtcli::add_int(c, "--m", a->m, 1, 30, "embedding dimension (default: FNN)");
   c->add_flag("--json", a->json, "print the summary as JSON");
   cvtcli::add_caps(c, a->caps, true, true);
-  return {c, [a] {
+  return {c, [a, reference] {
+    if (cvtcli::section4_reference_selected(*reference)) return cvtcli::run_section4_reference(*reference);
+    if (a->scene.empty()) throw cvtcli::UsageError{"--scene or --reference is required"};
     std::vector<std::string> names;
     {
       std::stringstream ss(a->signals);

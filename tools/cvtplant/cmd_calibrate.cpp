@@ -58,6 +58,7 @@ std::string command_line(const Options& o) {
   std::ostringstream s;
   s << "cvtplant calibrate --scene " << o.scenes << " --fit " << o.fit;
   if (!o.start.empty()) s << " --start " << o.start;
+  if (!o.ref.set.empty()) s << " --set " << o.ref.set;
   if (o.ref.sheaves != "scene") s << " --sheaves " << o.ref.sheaves;
   if (o.ref.t_end_s > 0) s << " --t-end " << o.ref.t_end_s;
   s << " --rtol " << o.ref.rtol << " --every " << o.every << " --max-evals " << o.max_evals << " --out " << o.out;
@@ -155,7 +156,7 @@ Action register_calibrate(CLI::App& app) {
       const Options& o = *opt;
       if (sub->count("--t-end") > 0 && !(o.ref.t_end_s > 0 && o.ref.t_end_s <= 3600))
         throw UsageError{"--t-end: must be in (0, 3600] s"};
-      const val::RunSettings settings = reference_settings(sub, o.ref);
+      const val::RunSettings common = reference_settings(sub, o.ref);
       if (!(o.every >= 1 && o.every <= 1000)) throw UsageError{"--every: outside [1, 1000]"};
       if (!(o.max_evals >= 1 && o.max_evals <= 100000)) throw UsageError{"--max-evals: outside [1, 100000]"};
       if (!val::is_cpp_identifier(o.function))
@@ -165,10 +166,12 @@ Action register_calibrate(CLI::App& app) {
       if (names.empty()) throw UsageError{"--scene: no scene"};
       std::vector<std::shared_ptr<LoadedScene>> loaded;
       std::vector<cvt::Scene> plant_scenes;
+      std::vector<val::RunSettings> settings;
       for (const auto& n : names) {
         auto l = resolve_scene(n);
+        settings.push_back(settings_for(common, o.ref, *l));
         std::string why;
-        if (!val::reference_setup(l->scene, settings, why))
+        if (!val::reference_setup(l->scene, settings.back(), why))
           throw UsageError{"--scene " + n + ": the reference cannot run " + why};
         loaded.push_back(l);
         // --start moves the plant's parameters only; the reference runs the scene.
@@ -186,12 +189,12 @@ Action register_calibrate(CLI::App& app) {
       double ref_cpu = 0;
       for (std::size_t i = 0; i < loaded.size(); ++i) {
         cvt::Scene plant = plant_scenes[i];
-        plant.t_end_s = val::run_length_s(plant, settings);
+        plant.t_end_s = val::run_length_s(plant, common);
         std::string why;
-        auto setup = *val::reference_setup(loaded[i]->scene, settings, why);
+        auto setup = *val::reference_setup(loaded[i]->scene, settings[i], why);
         setup.run.t_end_s = plant.t_end_s;
         Progress progress("calibrate " + loaded[i]->name + ": reference", setup.run.t_end_s);
-        const val::ReferenceRun rr = val::reference_run(setup.params, setup.run, settings.cache_dir,
+        const val::ReferenceRun rr = val::reference_run(setup.params, setup.run, common.cache_dir,
                                                         [&](double t) { progress.update(t); });
         progress.finish();
         ref_cpu += rr.cpu_s;

@@ -16,10 +16,12 @@
 #include "progress.hpp"
 #include "registry.hpp"
 #include "scene_file.hpp"
+#include "validate_suite.hpp"
 #include "validation_options.hpp"
 #include "cvtplant/scene/builtin_scenes.hpp"
 #include "cvtplant/validation/report.hpp"
 #include "cvtplant/validation/scene_check.hpp"
+#include "cvtplant/validation/suite.hpp"
 
 namespace cvtcli {
 
@@ -35,11 +37,15 @@ struct Options {
   double max_t_end_s = 60;
   bool json = false;
   bool figures = true;
+  // --suite (docs/validation.md#suite): the scene is the plant's, default ratio-control.
+  std::string suite, uncertainty = "subset";
+  bool maps = true;
 };
 
 struct SceneOutput {
   val::SceneResult r;
   std::string png, csv;
+  const char* set = "seed";  // the reference's parameter set
 };
 
 bool holds_a_pulley(const cvt::Scene& s) { return s.params.hold_driver_speed || s.params.hold_driven_speed; }
@@ -72,7 +78,7 @@ std::vector<std::shared_ptr<LoadedScene>> scenes_for(const std::string& which, c
   return out;
 }
 
-nlohmann::json jnum(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+nlohmann::json jnum(double v) { return json_number(v); }
 nlohmann::json jtime(double t) { return t >= 0 ? nlohmann::json(t) : nlohmann::json(nullptr); }
 
 nlohmann::json to_json(const SceneOutput& o) {
@@ -85,6 +91,7 @@ nlohmann::json to_json(const SceneOutput& o) {
     return j;
   }
   j["status"] = "ok";
+  j["set"] = o.set;
   j["sheaves"] = r.clamped ? "clamped" : "fixed";
   j["t_end_s"] = r.t_end_s;
   j["compared_s"] = r.cmp.compared_s;
@@ -114,17 +121,8 @@ nlohmann::json to_json(const SceneOutput& o) {
   return j;
 }
 
-std::string pct(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.1f %%", 100.0 * v);
-  return b;
-}
-
-std::string fmt(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.4g", v);
-  return b;
-}
+std::string pct(double v) { return pct_text(v); }
+std::string fmt(double v) { return num_text(v); }
 
 std::string tfmt(double t) { return t >= 0 ? fmt(t) + " s" : "never"; }
 
@@ -135,9 +133,10 @@ void print_text(const std::vector<SceneOutput>& results) {
       std::printf("## %s: not run (the reference cannot run %s)\n\n", r.name.c_str(), r.skipped.c_str());
       continue;
     }
-    std::printf("## %s (%g s; compared over 0-%g s; steady state: the last %g s of it; reference on %s sheaves, %s)\n\n",
-                r.name.c_str(), r.t_end_s, r.cmp.compared_s, r.cmp.window_s, r.clamped ? "clamped" : "fixed",
-                r.ref.from_cache ? "from the cache" : "run now");
+    std::printf(
+        "## %s (%g s; compared over 0-%g s; steady state: the last %g s of it; reference: %s set on %s sheaves, %s)\n\n",
+        r.name.c_str(), r.t_end_s, r.cmp.compared_s, r.cmp.window_s, o.set, r.clamped ? "clamped" : "fixed",
+        r.ref.from_cache ? "from the cache" : "run now");
     if (!r.ref.failure.empty()) std::printf("The comparison ends there: %s.\n\n", r.ref.failure.c_str());
     if (r.clamped)
       std::printf("Reference's movable sheaves at their end stops (a ratio limit) from: driver %s, driven %s.\n\n",
@@ -171,21 +170,52 @@ Action register_validate(CLI::App& app) {
                   "Run the plant with a parameter file's [params] (e.g. calibrate --out); the reference is unchanged");
   sub->add_flag("--json", opt->json, "Print the results as JSON");
   sub->add_flag("!--no-figures", opt->figures, "Skip the overlay PNGs");
+  sub->add_option("--suite", opt->suite,
+                  "Run a manoeuvre suite against the reference instead of scenes (docs/validation.md#suite): "
+                  "controller or ci; --scene then names the plant (default ratio-control), --set the reference's "
+                  "set (default production), --max-t-end caps the suite's simulated seconds of reference")
+      ->check(CLI::IsMember(val::suite_names()));
+  sub->add_option("--uncertainty", opt->uncertainty,
+                  "With --suite: the reference's uncertainty runs: none, subset (one run of each kind and one "
+                  "cell of each map) or all")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"none", "subset", "all"}));
+  sub->add_flag("!--no-maps", opt->maps, "With --suite: skip the maps (thrust ratio, shift rate, traction, onset)");
   return [opt, sub, dir_opt]() -> int {
     return guarded([&] {
       const Options& o = *opt;
+      if (!o.suite.empty()) {
+        if (sub->count("--t-end") > 0) throw UsageError{"--t-end: a suite's manoeuvres have their own lengths"};
+        if (dir_opt->count() > 0) throw UsageError{"--scene-dir: not with --suite (--scene names the plant)"};
+        if (sub->count("--sheaves") > 0) throw UsageError{"--sheaves: a suite runs clamped sheaves"};
+        SuiteCliOptions so;
+        so.ref = o.ref;
+        so.suite = o.suite;
+        if (sub->count("--scene") > 0) so.plant = o.scene;
+        so.params = o.params;
+        so.uncertainty = o.uncertainty;
+        so.max_sim_s = sub->count("--max-t-end") > 0 ? o.max_t_end_s : so.max_sim_s;
+        so.maps = o.maps;
+        so.figures = o.figures;
+        so.json = o.json;
+        return run_validate_suite(so);
+      }
+      if (sub->count("--uncertainty") > 0 || sub->count("--no-maps") > 0)
+        throw UsageError{"--uncertainty and --no-maps go with --suite"};
       std::error_code ec;
       if (dir_opt->count() > 0 && !std::filesystem::is_directory(o.scene_dir, ec))
         throw UsageError{"--scene-dir: " + o.scene_dir + " is not a directory"};
       if (!(o.max_t_end_s > 0 && std::isfinite(o.max_t_end_s))) throw UsageError{"--max-t-end: must be > 0"};
-      const val::RunSettings settings = reference_settings(sub, o.ref);
+      const val::RunSettings common = reference_settings(sub, o.ref);
       const auto scenes = scenes_for(o.scene, o.scene_dir);
       // Every scene's length and the parameter file are checked before any work.
       std::vector<cvt::Scene> plant_scenes;
+      std::vector<val::RunSettings> settings;
       for (const auto& l : scenes) {
+        settings.push_back(settings_for(common, o.ref, *l));
         plant_scenes.push_back(l->scene);
         if (!o.params.empty()) apply_params_file(o.params, plant_scenes.back());
-        const double t_end = val::run_length_s(l->scene, settings);
+        const double t_end = val::run_length_s(l->scene, common);
         if (t_end > o.max_t_end_s)
           throw UsageError{"scene " + l->name + ": " + fmt(t_end) + " s exceeds --max-t-end " + fmt(o.max_t_end_s) +
                            " s (raise it or shorten with --t-end)"};
@@ -196,9 +226,10 @@ Action register_validate(CLI::App& app) {
         const auto& l = scenes[i];
         SceneOutput out;
         {
-          Progress progress("validate " + l->name + ": reference", val::run_length_s(l->scene, settings));
-          out.r = val::check_scene(l->name, l->scene, plant_scenes[i], settings,
+          Progress progress("validate " + l->name + ": reference", val::run_length_s(l->scene, common));
+          out.r = val::check_scene(l->name, l->scene, plant_scenes[i], settings[i],
                                    [&](double t) { progress.update(t); });
+          out.set = cvt::mbd::parameter_set_name(settings[i].set);
         }
         if (out.r.skipped.empty()) {
           out.csv = o.ref.out_dir + "/" + l->name + ".csv";

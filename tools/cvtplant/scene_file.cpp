@@ -244,7 +244,8 @@ class Reader {
   void read(LoadedScene& out) {
     cvt::Scene& s = out.scene;
     check_known(root_, "", {"name", "summary", "base", "features", "t_end_s", "frame_s", "substeps", "integrator",
-                            "energy_ledger", "scalar", "log", "params", "friction", "initial", "inputs"});
+                            "energy_ledger", "scalar", "log", "params", "friction", "initial", "inputs",
+                            "reference_set"});
     const std::string base = text(root_, "", "base", "");
     if (!base.empty()) {
       const cvt::Scene* b = cvt::find_builtin_scene(base.c_str());
@@ -253,6 +254,12 @@ class Reader {
     }
     out.name = text(root_, "", "name", base.empty() ? std::string("unnamed") : base);
     out.summary = text(root_, "", "summary", "");
+    // The reference's parameter set (docs/validation.md#parameter-sets).
+    out.reference_set = text(root_, "", "reference_set", out.reference_set);
+    // The names of cvt::mbd::parameter_set_by_name (this reader links no
+    // reference; `validate` maps the name through it).
+    if (out.reference_set != "seed" && out.reference_set != "production")
+      fail_field("reference_set", "unknown parameter set '" + out.reference_set + "' (seed, production)");
     s.features = name_list(root_, "features", kFeatureNames, static_cast<int>(std::size(kFeatureNames)), s.features);
     s.log = name_list(root_, "log", kLogNames, static_cast<int>(std::size(kLogNames)), s.log);
     s.t_end_s = number(root_, "", "t_end_s", s.t_end_s);

@@ -14,6 +14,9 @@ namespace cvtcli {
 struct LoadedScene {
   cvt::Scene scene;
   std::string name, summary, source;  // source: "built-in" or the file path
+  // The multibody reference's parameter set the scene is validated against
+  // (docs/validation.md#parameter-sets): a scene file's `reference_set`.
+  std::string reference_set = "seed";
 };
 
 // Scene files are a few kB (three profiles of at most 16 points); a larger

@@ -2,6 +2,7 @@
 #include "validation_options.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <system_error>
 
@@ -31,6 +32,11 @@ void add_reference_options(CLI::App* sub, ReferenceOptions& o, const std::string
       ->capture_default_str()
       ->check(CLI::IsMember(std::vector<std::string>(std::begin(cvt::validation::kSheaveChoiceNames),
                                                      std::end(cvt::validation::kSheaveChoiceNames))));
+  sub->add_option("--set", o.set,
+                  "The reference's parameter set for every scene: seed (Table 1) or production (the production-like "
+                  "chain CVT, docs/mbd-production.md); default: each scene's own (a scene file's reference_set, "
+                  "else seed)")
+      ->check(CLI::IsMember({"seed", "production"}));
   sub->add_option("--rtol", o.rtol, "Reference's BDF relative tolerance, [1e-11, 1e-3]")->capture_default_str();
   sub->add_option("--max-steps", o.max_steps, "Cap on the reference's integrator steps per scene, [1, 1e12]")
       ->capture_default_str();
@@ -50,6 +56,29 @@ cvt::validation::RunSettings reference_settings(const CLI::App* sub, const Refer
   st.cache_dir = o.out_dir + "/reference-cache";
   return st;
 }
+
+cvt::validation::RunSettings settings_for(const cvt::validation::RunSettings& st, const ReferenceOptions& o,
+                                          const LoadedScene& scene) {
+  cvt::validation::RunSettings out = st;
+  out.set = cvt::validation::parameter_set(!o.set.empty() ? o.set : scene.reference_set);
+  return out;
+}
+
+std::string pct_text(double v) {
+  if (!std::isfinite(v)) return "n/a";
+  char b[32];
+  std::snprintf(b, sizeof b, "%.1f %%", 100.0 * v);
+  return b;
+}
+
+std::string num_text(double v) {
+  if (!std::isfinite(v)) return "n/a";
+  char b[32];
+  std::snprintf(b, sizeof b, "%.4g", v);
+  return b;
+}
+
+nlohmann::json json_number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 void prepare_out_dir(const ReferenceOptions& o) {
   make_dir(o.out_dir);

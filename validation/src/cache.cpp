@@ -18,7 +18,7 @@ namespace cvt::validation {
 namespace {
 
 // The CSV's format: raised when its columns change (the key carries it).
-constexpr int kCacheFormat = 4;
+constexpr int kCacheFormat = 5;
 
 // One line per field: "group.name value"; doubles to 17 digits (every bit).
 struct KeyWriter {
@@ -54,8 +54,9 @@ std::string read_all(const std::string& path) {
 }
 
 constexpr const char* kCsvHeader =
-    "t_s,omega1_rad_s,omega2_rad_s,F_ax1_N,torque_driver_Nm,slip1_m_s,wrap_slip1_m_s,sheave1_m,sheave2_m\n";
-constexpr int kCsvColumns = 9;  // the series' columns, then the two sheave openings
+    "t_s,omega1_rad_s,omega2_rad_s,F_ax1_N,torque_driver_Nm,slip1_m_s,wrap_slip1_m_s,ratio_geom,F_ax2_N,clamp1_N,"
+    "clamp2_N,tau_in_Nm,tau_load_Nm,sheave1_m,sheave2_m\n";
+constexpr int kCsvColumns = 15;  // the series' columns, then the two sheave openings
 
 // The cache's CSV: the series' columns (kSeriesColumns) and the sheave
 // openings, every value to 17 digits, so a run read back is bit for bit the
@@ -63,7 +64,7 @@ constexpr int kCsvColumns = 9;  // the series' columns, then the two sheave open
 bool read_series(const std::string& path, ReferenceRun& out) {
   std::FILE* f = std::fopen(path.c_str(), "r");
   if (f == nullptr) return false;
-  char line[512];
+  char line[1024];
   bool ok = std::fgets(line, sizeof line, f) != nullptr && std::string(line) == kCsvHeader;
   std::vector<double>* cols[kCsvColumns];
   int c = 0;
@@ -127,34 +128,57 @@ std::string key_hash(const std::string& key) {
   return buf;
 }
 
-ReferenceRun reference_run(const cvt::mbd::MbdParams& p, const cvt::mbd::RunOptions& r, const std::string& cache_dir,
-                           const cvt::mbd::ProgressSink& on_progress) {
-  const std::string key = reference_key(p, r);
+std::optional<ReferenceRun> cached_run(const std::string& key, const std::string& cache_dir) {
   const std::string base = cache_dir + "/" + key_hash(key);
   ReferenceRun out;
   // The key file is written last: a run cut short leaves no key, so no hit.
-  if (read_all(base + ".key") == key && read_series(base + ".csv", out)) {
-    out.from_cache = true;
-    out.failure = read_all(base + ".failure");
-    return out;
-  }
-  out = ReferenceRun{};
+  if (read_all(base + ".key") != key || !read_series(base + ".csv", out)) return std::nullopt;
+  out.from_cache = true;
+  out.failure = read_all(base + ".failure");
+  return out;
+}
+
+void store_run(const std::string& key, const std::string& cache_dir, const ReferenceRun& run) {
+  const std::string base = cache_dir + "/" + key_hash(key);
+  write_series(base + ".csv", run);
+  if (!run.failure.empty())
+    write_text(base + ".failure", run.failure);
+  else
+    std::remove((base + ".failure").c_str());
+  write_text(base + ".key", key);
+}
+
+void append_sample(ReferenceRun& out, const cvt::mbd::Sample& s) {
+  out.series.t_s.push_back(s.t_s);
+  out.series.omega1_rad_s.push_back(s.omega_rad_s[0]);
+  out.series.omega2_rad_s.push_back(s.omega_rad_s[1]);
+  out.series.F_ax1_N.push_back(s.F_ax_N[0]);
+  // The chain's moment on the driver opposes the input: the torque the
+  // chain takes off the driver is its negative (docs/mbd.md#equations-of-motion).
+  out.series.torque_driver_Nm.push_back(-s.chain_torque_Nm[0]);
+  out.series.slip1_m_s.push_back(s.slip_m_s[0]);
+  out.series.wrap_slip_m_s.push_back(whole_wrap_slip(s.slip_min_m_s[0], s.slip_max_m_s[0]));
+  out.series.ratio_geom.push_back(s.radius_m[1] / s.radius_m[0]);
+  out.series.F_ax2_N.push_back(s.F_ax_N[1]);
+  out.series.clamp1_N.push_back(s.clamp_N[0]);
+  out.series.clamp2_N.push_back(s.clamp_N[1]);
+  out.series.tau_in_Nm.push_back(s.tau_in_Nm);
+  out.series.tau_load_Nm.push_back(s.tau_load_Nm);
+  out.sheave1_m.push_back(s.sheave_opening_m[0]);
+  out.sheave2_m.push_back(s.sheave_opening_m[1]);
+}
+
+ReferenceRun reference_run(const cvt::mbd::MbdParams& p, const cvt::mbd::RunOptions& r, const std::string& cache_dir,
+                           const cvt::mbd::ProgressSink& on_progress) {
+  const std::string key = reference_key(p, r);
+  if (auto hit = cached_run(key, cache_dir)) return std::move(*hit);
+  ReferenceRun out;
   const std::size_t n = static_cast<std::size_t>(r.t_end_s / r.sample_s) + 2;
   out.series.reserve(n);
   out.sheave1_m.reserve(n);
   out.sheave2_m.reserve(n);
   auto on_sample = [&](const cvt::mbd::Sample& s, const cvt::mbd::ChainModel&, const double*) {
-    out.series.t_s.push_back(s.t_s);
-    out.series.omega1_rad_s.push_back(s.omega_rad_s[0]);
-    out.series.omega2_rad_s.push_back(s.omega_rad_s[1]);
-    out.series.F_ax1_N.push_back(s.F_ax_N[0]);
-    // The chain's moment on the driver opposes the input: the torque the
-    // chain takes off the driver is its negative (docs/mbd.md#equations-of-motion).
-    out.series.torque_driver_Nm.push_back(-s.chain_torque_Nm[0]);
-    out.series.slip1_m_s.push_back(s.slip_m_s[0]);
-    out.series.wrap_slip_m_s.push_back(whole_wrap_slip(s.slip_min_m_s[0], s.slip_max_m_s[0]));
-    out.sheave1_m.push_back(s.sheave_opening_m[0]);
-    out.sheave2_m.push_back(s.sheave_opening_m[1]);
+    append_sample(out, s);
   };
   cvt::mbd::RunStats st;
   try {
@@ -172,12 +196,7 @@ ReferenceRun reference_run(const cvt::mbd::MbdParams& p, const cvt::mbd::RunOpti
   out.wall_s = st.wall_s;
   out.steps = st.steps;
   out.ledger_residual_rel = st.ledger_residual_max_rel;
-  write_series(base + ".csv", out);
-  if (!out.failure.empty())
-    write_text(base + ".failure", out.failure);
-  else
-    std::remove((base + ".failure").c_str());
-  write_text(base + ".key", key);
+  store_run(key, cache_dir, out);
   return out;
 }
 

@@ -24,7 +24,9 @@ double rel_rms(const std::vector<double>& plant, const std::vector<double>& refe
     r2 += reference[i] * reference[i];
     ++used;
   }
-  return r2 > 0 ? std::sqrt(d2 / r2) : std::sqrt(d2 / static_cast<double>(std::max<std::size_t>(1, used)));
+  // No sample to compare (a quantity one model does not have): no error, not 0.
+  if (used == 0) return std::nan("");
+  return r2 > 0 ? std::sqrt(d2 / r2) : std::sqrt(d2 / static_cast<double>(used));
 }
 
 ReferenceScale reference_scale(const std::vector<double>& reference) {
@@ -124,6 +126,8 @@ Comparison compare(const Series& plant_all, const Series& ref_all, std::size_t n
   row("F_ax1 (mean)", "N", plant.F_ax1_N, ref.F_ax1_N, from);
   row("torque on the driver", "N m", plant.torque_driver_Nm, ref.torque_driver_Nm, from);
   row("driver slip", "m/s", plant.slip1_m_s, ref.slip1_m_s, from);
+  row("geometric ratio r2/r1", "-", plant.ratio_geom, ref.ratio_geom, from);
+  row("F_ax2 (mean)", "N", plant.F_ax2_N, ref.F_ax2_N, from);
   c.ripple_plant_N = peak_to_peak_from(plant.F_ax1_N, from);
   c.ripple_reference_N = peak_to_peak_from(ref.F_ax1_N, from);
   c.gross_slip_plant_s = first_gross_slip(plant, kGrossSlip_m_s);

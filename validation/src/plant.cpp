@@ -23,6 +23,7 @@ Series plant_run(const cvt::Scene& s, double sample_s) {
   auto holder = std::make_unique<cvt::SceneSimulator<cvt::AllRomPlants<double>>>();
   const cvt::SceneIssue issue = holder->load(s, cvt::sim_config_of(s));
   if (!issue.ok) throw InputError(std::string(issue.field) + ": " + issue.message);
+  const bool wedging = (s.features & cvt::rom_feature::wedging) != 0;
   auto on_frame = [&](long i, double t, const cvt::IRomSimulator<double>& v) {
     if (i % every != 0) return true;
     // The compared quantities, read through the plant's signal list.
@@ -39,6 +40,13 @@ Series plant_run(const cvt::Scene& s, double sample_s) {
     const double v1 = signal(cvt::RomSignal::v_rel1), v2 = signal(cvt::RomSignal::v_rel2);
     out.slip1_m_s.push_back(-0.5 * (v1 + v2));
     out.wrap_slip_m_s.push_back(whole_wrap_slip(std::min(-v1, -v2), std::max(-v1, -v2)));
+    out.ratio_geom.push_back(signal(cvt::RomSignal::geometric_ratio));
+    // Only the wedging plants have a driven pulley's axial force.
+    out.F_ax2_N.push_back(wedging ? signal(cvt::RomSignal::driven_clamp_force) : std::nan(""));
+    out.clamp1_N.push_back(s.clamp.at(t));
+    out.clamp2_N.push_back(wedging ? s.params.driven_clamp_N : std::nan(""));
+    out.tau_in_Nm.push_back(signal(cvt::RomSignal::tau_in));
+    out.tau_load_Nm.push_back(signal(cvt::RomSignal::tau_load));
     last_t = t;
     return true;
   };

@@ -1,8 +1,11 @@
 // A plant scene as the multibody reference's inputs (docs/validation.md#method).
 #include "cvtplant/validation/reference.hpp"
 
+#include <cmath>
+
 #include "cvtplant/friction/friction_fields.hpp"
 #include "cvtplant/mbd/params_fields.hpp"
+#include "cvtplant/mbd/run.hpp"
 #include "cvtplant/validation/errors.hpp"
 
 namespace cvt::validation {
@@ -51,16 +54,38 @@ cvt::mbd::SheaveMode reference_sheaves(const cvt::Scene& s, SheaveChoice c) {
   return fixed ? cvt::mbd::SheaveMode::fixed : cvt::mbd::SheaveMode::clamped;
 }
 
-std::optional<cvt::mbd::MbdParams> reference_params(const cvt::Scene& s, SheaveChoice choice, std::string& why_not) {
+double settle_rtol(cvt::mbd::ParameterSet set) {
+  return set == cvt::mbd::ParameterSet::production ? 1e-6 : cvt::mbd::RunOptions{}.settle_rtol;
+}
+
+cvt::mbd::ParameterSet parameter_set(const std::string& name) {
+  const auto set = cvt::mbd::parameter_set_by_name(name);
+  if (!set) throw InputError("unknown parameter set '" + name + "' (seed, production)");
+  return *set;
+}
+
+std::optional<cvt::mbd::MbdParams> reference_params(const cvt::Scene& s, SheaveChoice c, std::string& why_not) {
+  return reference_params(s, c, cvt::mbd::ParameterSet::seed, why_not);
+}
+
+std::optional<cvt::mbd::MbdParams> reference_params(const cvt::Scene& s, SheaveChoice choice,
+                                                    cvt::mbd::ParameterSet set, std::string& why_not) {
+  const bool production = set == cvt::mbd::ParameterSet::production;
   const cvt::mbd::SheaveMode sheaves = reference_sheaves(s, choice);
+  if (production && sheaves == cvt::mbd::SheaveMode::fixed) {
+    why_not = "fixed sheaves on the production set (its pulleys are clamped, docs/mbd-production.md)";
+    return std::nullopt;
+  }
   const cvt::RomParams& rp = s.params;
   const cvt::RomInitial& in = s.initial;
   if (rp.hold_driver_speed || rp.hold_driven_speed) {
     why_not = "held pulleys (the oscillator scenes; the reference is a drive train)";
     return std::nullopt;
   }
-  if (in.x1_m != 0.0 || in.xd1_m_s != 0.0 || in.x2_m != 0.0 || in.xd2_m_s != 0.0 || in.radius_offset_m != 0.0) {
-    why_not = "initial lump or radial states (the reference's chain starts settled on its pitch line)";
+  if (in.x1_m != 0.0 || in.xd1_m_s != 0.0 || in.x2_m != 0.0 || in.xd2_m_s != 0.0 ||
+      (!production && in.radius_offset_m != 0.0)) {
+    why_not = production ? "initial lump states (the reference's chain starts settled)"
+                         : "initial lump or radial states (the seed set's chain starts settled on its pitch line)";
     return std::nullopt;
   }
   const bool at_rest = in.omega1_rad_s == 0.0 && in.omega2_rad_s == 0.0;
@@ -69,14 +94,26 @@ std::optional<cvt::mbd::MbdParams> reference_params(const cvt::Scene& s, SheaveC
               "pulleys running forward)";
     return std::nullopt;
   }
-  // The chain and its pulley radii stay the seed's (Table 1): the plant's
-  // r1, r2 and lump parameters are effective values fitted to this chain
-  // (`cvtplant calibrate`), not inputs of the reference.
-  cvt::mbd::MbdParams p = cvt::mbd::seed_case(1);
-  p.friction = rp.friction;
+  // The chain and its pulley radii stay the set's: the plant's r1, r2 and
+  // lump parameters are effective values fitted to this chain (`cvtplant
+  // calibrate`), not inputs of the reference.
+  cvt::mbd::MbdParams p = production ? cvt::mbd::production_set() : cvt::mbd::seed_case(1);
   p.J1_kgm2 = rp.J1_kgm2;
   p.J2_kgm2 = rp.J2_kgm2;
-  p.beta0_rad = rp.beta0_rad;
+  if (!production) {
+    // The seed set's friction and sheave angle are the scene's; the
+    // production set's are its own (docs/mbd-production.md#friction).
+    p.friction = rp.friction;
+    p.beta0_rad = rp.beta0_rad;
+  } else if (in.radius_offset_m != 0.0) {
+    // The chain starts at the plant's radial offset on the driver, its
+    // sheave locked there until the release (docs/mbd-production.md#start).
+    p.start_r1_m = p.r1_m + in.radius_offset_m;
+    if (!(std::fabs(in.radius_offset_m) * 2.0 * std::tan(p.beta0_rad) < p.sheave_stop_m)) {
+      why_not = "an initial radial offset beyond the production set's ratio stops";
+      return std::nullopt;
+    }
+  }
   auto tau_in = time_profile(s.tau_in, "torque", why_not);
   if (!tau_in) return std::nullopt;
   auto tau_load = time_profile(s.tau_load, "torque", why_not);

@@ -12,13 +12,14 @@ double run_length_s(const cvt::Scene& s, const RunSettings& st) {
 }
 
 std::optional<ReferenceSetup> reference_setup(const cvt::Scene& s, const RunSettings& st, std::string& why_not) {
-  auto params = reference_params(s, st.sheaves, why_not);
+  auto params = reference_params(s, st.sheaves, st.set, why_not);
   if (!params) return std::nullopt;
   ReferenceSetup out{std::move(*params), {}};
   out.run.t_end_s = run_length_s(s, st);
   out.run.rtol = st.rtol;
   out.run.sample_s = s.frame_s;
   out.run.max_steps = st.max_steps;
+  out.run.settle_rtol = settle_rtol(st.set);
   return out;
 }
 

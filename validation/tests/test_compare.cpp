@@ -103,13 +103,16 @@ TEST_SUITE("compare") {
         s.torque_driver_Nm.push_back(plant ? 99.0 : 100.0);
         s.slip1_m_s.push_back(0.01);
         s.wrap_slip_m_s.push_back(plant && t >= 2.5 - 1e-9 ? 2.0 : 0.0);
+        s.ratio_geom.push_back(plant ? 1.5 : 1.2);
+        // The plant has no driven axial force (no wedging): NaN throughout.
+        s.F_ax2_N.push_back(plant ? std::nan("") : 1100.0);
       });
     };
     const Series p = fill(true), r = fill(false);
     const Comparison c = compare(p, r, p.size());
     CHECK(c.compared_s == doctest::Approx(3.0));
     CHECK(c.window_s == 1.0);
-    REQUIRE(c.rows.size() == 6u);
+    REQUIRE(c.rows.size() == 8u);
     CHECK(c.rows[0].quantity == "omega1");
     CHECK(c.rows[0].rel_rms == 0.0);
     CHECK(c.rows[2].quantity == "ratio omega1/omega2");
@@ -118,6 +121,13 @@ TEST_SUITE("compare") {
     CHECK(c.rows[2].rel_rms == doctest::Approx(0.2));  // |2 - 2.5| / 2.5 where both turn
     CHECK(c.rows[4].quantity == "torque on the driver");
     CHECK(c.rows[4].ss_rel == doctest::Approx(-0.01));
+    CHECK(c.rows[6].quantity == "geometric ratio r2/r1");
+    CHECK(c.rows[6].rel_rms == doctest::Approx(0.25));
+    CHECK(c.rows[6].ss_rel == doctest::Approx(0.25));
+    // A quantity one model lacks has no error, not a zero one.
+    CHECK(c.rows[7].quantity == "F_ax2 (mean)");
+    CHECK(std::isnan(c.rows[7].rel_rms));
+    CHECK(std::isnan(c.rows[7].plant_ss));
     CHECK(c.ripple_reference_N == 0.0);
     CHECK(c.ripple_plant_N == doctest::Approx(20.0).epsilon(1e-3));
     CHECK(c.gross_slip_plant_s == doctest::Approx(2.5));

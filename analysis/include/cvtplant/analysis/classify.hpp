@@ -48,6 +48,7 @@ struct Classification {
   Test01Result t01;
   SpectralPeaks peaks;
   double amplitude_decay = 0;  // std(first quarter)/std(last quarter)
+  double mean_period_s = 0;    // Rosenstein's mean period times dt (the exponent's per-period scale)
   bool deterministic = false;
 };
 

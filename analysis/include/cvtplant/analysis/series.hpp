@@ -42,6 +42,18 @@ struct Spectrum {
 };
 Spectrum periodogram(const std::vector<double>& x);
 
+// The strongest local maxima of the periodogram (docs/analysis.md#spectral-lines)
+// at or above min_Hz, strongest first, their frequencies refined by a
+// parabola through ln P at the peak bin and its two neighbours: at most
+// `count`, each within 20 dB of the strongest bin at or above min_Hz (bin 0,
+// the mean, excluded). Frequencies in Hz for a sample interval dt [s] (dt = 1:
+// cycles per sample); power_rel is each line's power over the strongest bin's.
+struct Lines {
+  std::vector<double> Hz, power_rel;
+  double resolution_Hz = 0;  // one bin of the zero-padded transform
+};
+Lines spectral_lines(const std::vector<double>& x, double dt, int count, double min_Hz = 0);
+
 // Rosenstein's mean period: 1 / (power-weighted mean frequency), in samples.
 double mean_period_samples(const std::vector<double>& x);
 

@@ -4,6 +4,7 @@
 // parameters and run options (cvt::mbd::visit_mbd_params,
 // visit_run_options) and the reference's version, so two runs with equal
 // keys are the same run.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,15 @@ struct ReferenceRun {
 // be written throws InputError.
 ReferenceRun reference_run(const cvt::mbd::MbdParams& p, const cvt::mbd::RunOptions& r, const std::string& cache_dir,
                            const cvt::mbd::ProgressSink& on_progress = {});
+
+// The run stored under `key` in cache_dir, if it is there whole (its key
+// file equal to `key` byte for byte, its CSV readable to the end).
+std::optional<ReferenceRun> cached_run(const std::string& key, const std::string& cache_dir);
+// Stores a run under `key` (the key file last, so a run cut short is never
+// a hit); throws InputError if the cache cannot be written.
+void store_run(const std::string& key, const std::string& cache_dir, const ReferenceRun& run);
+// Appends one of the reference's samples to a run's series and sheave columns.
+void append_sample(ReferenceRun& run, const cvt::mbd::Sample& s);
 
 // The first sample time at which the reference's movable sheave (0 driver,
 // 1 driven) is within 0.1 mm of its end stop (the chain at a ratio limit: the

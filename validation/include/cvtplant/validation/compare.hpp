@@ -18,7 +18,8 @@ inline constexpr double kGrossSlip_m_s = 1.0;
 // and reference are finite (a NaN marks a missing value: the reference's
 // wrap slip with no bolt in the wrap),
 //   sqrt(sum (plant - reference)^2 / sum reference^2),
-// or the absolute RMS of the difference where the reference is 0 throughout.
+// or the absolute RMS of the difference where the reference is 0 throughout;
+// NaN where no sample has both (a quantity one model does not have).
 double rel_rms(const std::vector<double>& plant, const std::vector<double>& reference);
 
 // The reference's side of rel_rms, for a fit whose reference is fixed while

@@ -17,6 +17,9 @@ namespace cvt::validation {
 
 struct RunSettings {
   SheaveChoice sheaves = SheaveChoice::scene;
+  // The reference's parameter set (docs/validation.md#parameter-sets): the
+  // caller sets each scene's own, or the one `--set` names.
+  cvt::mbd::ParameterSet set = cvt::mbd::ParameterSet::seed;
   double t_end_s = 0;  // > 0: every run shortened to at most this [s]; 0: each scene's own length
   double rtol = 5e-7;  // the reference's BDF relative tolerance
   long long max_steps = 20000000;  // cap on the reference's integrator steps per scene
