@@ -383,7 +383,7 @@ bool ChainModel::rhs(double t_s, const double* y, double* dydt) const {
 }
 
 void ChainModel::build_pattern() {
-  // docs/mbd.md#jacobian: links couple to their two neighbours through the
+  // docs/mbd.md#bdf-and-the-jacobian: links couple to their two neighbours through the
   // joints and to both pulleys (and sheaves) through the contacts.
   std::vector<std::vector<int>> cols(static_cast<std::size_t>(n_));
   auto add = [&](int r, int c) { cols[static_cast<std::size_t>(c)].push_back(r); };
@@ -411,7 +411,7 @@ void ChainModel::build_pattern() {
       add(sheave_rate(j), sheave_opening(j));
     }
   }
-  // Ledger rows (docs/mbd.md#jacobian): exact Newton corrections for the
+  // Ledger rows (docs/mbd.md#bdf-and-the-jacobian): exact Newton corrections for the
   // integrals too. Nothing depends on them, so KLU's block triangular form
   // keeps them out of the factorisation's fill.
   for (int c = 0; c < 6 * n_links_; ++c)

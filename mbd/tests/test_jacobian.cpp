@@ -1,6 +1,6 @@
 // The sparse Jacobian (dual-number element derivatives) against central
 // differences of the right-hand side, in a running configuration
-// (docs/mbd.md#jacobian).
+// (docs/mbd.md#bdf-and-the-jacobian).
 #include <doctest/doctest.h>
 
 #include <algorithm>

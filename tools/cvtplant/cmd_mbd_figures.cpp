@@ -1,6 +1,6 @@
 // `cvtplant mbd figures`: the seed's Figs. 13 and 14 (pulley speeds and driver
 // axial force, cases 1 and 2) and a picture of the chain on the pulleys, as
-// PNG through gnuplot (docs/cli.md#mbd-figures, docs/mbd.md#figures).
+// PNG through gnuplot (docs/cli.md#mbd-figures, docs/mbd.md#what-the-model-shows).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

@@ -61,7 +61,7 @@ class ControllerNode {
   }
 
   // The ECU itself restarts: as restart(), and its CtrlCmd counter starts
-  // again at 0 (docs/sil.md#controller-faults).
+  // again at 0 (docs/sil.md#fault-scenarios).
   void reboot() {
     tx_.reset();
     tx_shift_.reset();

@@ -40,7 +40,7 @@ Dual<double, N> norm(const Dual<double, N>& x, const Dual<double, N>& y) {
 // Friction per unit slip speed, k(s) = mu(s) sgn(s) / s for s = |g| >= 0, with
 // the core's law and sign smoothing (seed Eq. 6 and 2/pi atan(lambda s)); the
 // friction force is then -N k(|g|) g, along the slip. At s = 0 the limit
-// mu(0) * 2 lambda / pi. docs/mbd.md#friction
+// mu(0) * 2 lambda / pi. docs/mbd.md#contact
 inline double friction_per_speed(const FrictionParams<double>& fp, double s) {
   if (s > 0) return friction_characteristic(fp, s) / s;
   return friction_characteristic_and_slope(fp, 0.0).slope;
