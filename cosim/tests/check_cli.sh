@@ -10,14 +10,8 @@ REF=$1 SIL=$2
 rc=0
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-expect() {  # want_status, cmd...
-  local want=$1; shift
-  local err; err=$("$@" 2>&1 >/dev/null); local got=$?
-  local lines; lines=$(printf '%s' "$err" | grep -c '')
-  if [ "$got" != "$want" ]; then echo "FAIL: $* -> exit $got, want $want ($err)"; rc=1; return; fi
-  if [ "$want" = 2 ] && [ "$lines" != 1 ]; then echo "FAIL: $* -> $lines stderr lines, want 1"; rc=1; return; fi
-  echo "ok: $* -> $got${err:+: $err}"
-}
+# shellcheck source=/dev/null
+source "$(dirname "$0")/../../tests/support/cli_expect.sh"
 expect 0 "$REF" --help
 expect 2 "$REF" --bogus
 expect 2 "$REF" --rtol 0

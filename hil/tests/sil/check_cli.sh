@@ -6,14 +6,8 @@
 set -u
 BRIDGE=$1 SIL=$2 CONTROLLER=$3
 rc=0
-expect() {  # want_status, cmd...
-  local want=$1; shift
-  local err; err=$("$@" 2>&1 >/dev/null); local got=$?
-  local lines; lines=$(printf '%s' "$err" | grep -c '')
-  if [ "$got" != "$want" ]; then echo "FAIL: $* -> exit $got, want $want ($err)"; rc=1; return; fi
-  if [ "$want" = 2 ] && [ "$lines" != 1 ]; then echo "FAIL: $* -> $lines stderr lines, want 1"; rc=1; return; fi
-  echo "ok: $* -> $got${err:+: $err}"
-}
+# shellcheck source=/dev/null
+source "$(dirname "$0")/../../../tests/support/cli_expect.sh"
 expect 0 "$BRIDGE" --help
 expect 2 "$BRIDGE" --bogus
 expect 2 "$BRIDGE" --mode fast
