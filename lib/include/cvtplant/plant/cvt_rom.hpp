@@ -306,7 +306,7 @@ class CvtRom {
     jac.slip_unit(1, L::kV2);
     radial_.partials(x, polygon_.radius_factor(x), jac);
     polygon_.partials(x, c, pitch_radius1(x), fax, jac);
-    const RomClampPartials<T> dfc = axial_.clamp_partials(x, radial_);
+    const RomClampPartials<Cfg> dfc = axial_.clamp_partials(x, radial_);
     tension_.partials(x, c, dfc, vc, r2, radial_, core_, jac);
     jac.finish();
 

@@ -16,18 +16,26 @@
 
 namespace cvt {
 
-// The clamping force's partial derivatives: d F_clamp / d x_col for at most
-// two states (delta, and rho with the radial DOF); none while the bolt is
-// slack or without the feature (the force is then an input).
-template <class T>
+// The clamping force's partial derivatives d F_clamp / d x_col: in delta,
+// and in rho with the radial DOF; none while the bolt is slack or without
+// the feature (the force is then an input). The columns are compile-time
+// constants, so the pieces that read them (each()) index J and the contact
+// law's arrays with constants: the compiler keeps those in registers.
+template <class Cfg>
 struct RomClampPartials {
-  int n = 0;
-  int col[2] = {0, 0};
-  T val[2] = {};
-  void add(int c, const T& v) {
-    col[n] = c;
-    val[n] = v;
-    ++n;
+  using T = typename Cfg::Scalar;
+  bool on = false;  // the bolt compressed
+  T delta{}, rho{};
+  // f(col, d F_clamp / d x_col) for each partial, delta first.
+  template <class Fn>
+  void each(Fn&& f) const {
+    if constexpr (Cfg::kAxial) {
+      if (!on) return;
+      f(Cfg::Layout::kDelta, delta);
+      if constexpr (Cfg::kRadial) f(Cfg::Layout::kRho, rho);
+    } else {
+      (void)f;
+    }
   }
 };
 
@@ -50,12 +58,12 @@ class RomAxial {
     return clamp_input;
   }
   template <class Radial>
-  RomClampPartials<T> clamp_partials(const typename Cfg::State&, const Radial&) const {
+  RomClampPartials<Cfg> clamp_partials(const typename Cfg::State&, const Radial&) const {
     return {};
   }
   template <class S>
   void rows(const typename Cfg::template Vec<S>&, const T&, const S&, typename Cfg::template Vec<S>&) const {}
-  void jacobian_rows(const typename Cfg::State&, const RomClampPartials<T>&, typename Cfg::Jacobian&) const {}
+  void jacobian_rows(const typename Cfg::State&, const RomClampPartials<Cfg>&, typename Cfg::Jacobian&) const {}
   template <class A, class Radial>
   void add_stored_energy(const A*, const Radial&, A&) const {}
   template <class A, class Power>
@@ -111,11 +119,12 @@ class RomAxial<Cfg, true> {
     return d > S(T(0)) ? S(K_ax_) * d : S(T(0));
   }
   template <class Radial>
-  RomClampPartials<T> clamp_partials(const State& x, const Radial& radial) const {
-    RomClampPartials<T> g;
+  RomClampPartials<Cfg> clamp_partials(const State& x, const Radial& radial) const {
+    RomClampPartials<Cfg> g;
     if (radial.bolt_compression(x(L::kDelta), x) > T(0)) {
-      g.add(L::kDelta, K_ax_);
-      if constexpr (Cfg::kRadial) g.add(L::kRho, -K_ax_ * radial.two_tan_beta0());
+      g.on = true;
+      g.delta = K_ax_;
+      if constexpr (Cfg::kRadial) g.rho = -K_ax_ * radial.two_tan_beta0();
     }
     return g;
   }
@@ -135,7 +144,7 @@ class RomAxial<Cfg, true> {
   // the delta' row at a fixed ratio, and the whole row with the radial DOF,
   // whose bolt force also depends on rho (docs/rom.md#structured-solve); J is
   // never zeroed, so every entry it reads is written.
-  void jacobian_rows(const State& x, const RomClampPartials<T>& dfb, typename Cfg::Jacobian& J) const {
+  void jacobian_rows(const State& x, const RomClampPartials<Cfg>& dfb, typename Cfg::Jacobian& J) const {
     (void)x;
     J(L::kFh, L::kFh) = -inv_tau_h_;
     J(L::kDelta, L::kDeltaDot) = T(1);
@@ -143,12 +152,12 @@ class RomAxial<Cfg, true> {
       const T inv_ms = inv_ms_;
       #pragma GCC unroll 16
       for (int j = 0; j < Cfg::N; ++j) J(L::kDeltaDot, j) = T(0);
-      for (int k = 0; k < dfb.n; ++k) J(L::kDeltaDot, dfb.col[k]) = -dfb.val[k] * inv_ms;
+      dfb.each([&](int col, const T& d) { J(L::kDeltaDot, col) = -d * inv_ms; });
       J(L::kDeltaDot, L::kFh) += inv_ms;
       J(L::kDeltaDot, L::kDeltaDot) += -cs_ * inv_ms;
     } else {
       J(L::kDeltaDot, L::kFh) = Cfg::per_tau(inv_ms_);
-      J(L::kDeltaDot, L::kDelta) = dfb.n > 0 ? Cfg::per_tau(-dfb.val[0] * inv_ms_) : T(0);
+      J(L::kDeltaDot, L::kDelta) = dfb.on ? Cfg::per_tau(-dfb.delta * inv_ms_) : T(0);
       J(L::kDeltaDot, L::kDeltaDot) = Cfg::per_tau(-cs_ * inv_ms_);
     }
   }

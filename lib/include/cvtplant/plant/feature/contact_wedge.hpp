@@ -74,16 +74,28 @@ class RomWedgeContact {
   class Jac {
    public:
     Jac(const Core& k, const Cache& c, const T& /*fl*/, const T& rip, bool rippled, const T& w1, bool)
-        : k_(k), c_(c), w1_(w1), rip_(rip), rippled_(rippled) {
+        : k_(k), c_(c), w1_(w1), rip_(rip), rippled_(Cfg::kPolygon && rippled) {
+      // The arrays a plant type never writes are left out: the entry lump's
+      // own slip (the creep) comes with the tension feature, the lumps' own
+      // axial force (the link ripple) with the polygon.
       #pragma GCC unroll 16
-      for (int j = 0; j < N; ++j) dvt_[j] = dv0_[j] = dr1e_[j] = dfax_[j] = dfl_[j] = T(0);
+      for (int j = 0; j < N; ++j) dvt_[j] = dr1e_[j] = dfax_[j] = T(0);
+      if constexpr (Cfg::kTension) {
+        #pragma GCC unroll 16
+        for (int j = 0; j < N; ++j) dv0_[j] = T(0);
+      }
+      if constexpr (Cfg::kPolygon) {
+        #pragma GCC unroll 16
+        for (int j = 0; j < N; ++j) dfl_[j] = T(0);
+      }
     }
 
     void slip(int lump, int col, const T& dv) {
       // Only the entry lump has a slip speed of its own (the creep, feature
       // tension); both share the rest.
       (void)lump;
-      dv0_[col] += dv;
+      if constexpr (Cfg::kTension) dv0_[col] += dv;
+      else (void)col, (void)dv;
     }
     void slip_both(int col, const T& dv) { dvt_[col] += dv; }
     void slip_unit(int, int) {}  // d v_t,i / d xd_i = 1: added in finish()
@@ -92,9 +104,14 @@ class RomWedgeContact {
       dvt_[col] += -d * w1_;
     }
     void axial(int col, const T& d) { dfax_[col] += d; }
-    void lumps_force(int col, const T& d) { dfl_[col] += d; }
+    void lumps_force(int col, const T& d) {
+      if constexpr (Cfg::kPolygon) dfl_[col] += d;
+      else (void)col, (void)d;
+    }
 
-    void finish() {
+    // Inlined, so that the arrays above stay in registers and the columns
+    // the pieces never wrote cost no loads.
+    [[gnu::always_inline]] void finish() {
       constexpr int kV[2] = {L::kV1, L::kV2};
       const T inv_cos[2] = {k_.inv_cos1, k_.inv_cos2};
       const T load[2] = {k_.load1, k_.load2};
@@ -106,7 +123,9 @@ class RomWedgeContact {
         #pragma GCC unroll 16
         for (int j = 0; j < N; ++j) {
           T dn = load[i] * dfax_[j];
-          if (rippled_) dn = load[i] * (rip_ * dfax_[j] + dfl_[j]);
+          if constexpr (Cfg::kPolygon) {
+            if (rippled_) dn = load[i] * (rip_ * dfax_[j] + dfl_[j]);
+          }
           T dv = dvt_[j];
           if constexpr (Cfg::kTension) {
             if (i == 0) dv = dv + dv0_[j];

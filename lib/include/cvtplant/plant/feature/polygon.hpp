@@ -62,7 +62,7 @@ class RomPolygon {
   template <class Jac>
   void partials(const typename Cfg::State&, const Cache&, const T&, const T&, Jac&) const {}
   template <class TCache, class Radial, class Core, class Tension>
-  void jacobian_row(const typename Cfg::State&, const TCache&, const T&, const T&, const RomClampPartials<T>&,
+  void jacobian_row(const typename Cfg::State&, const TCache&, const T&, const T&, const RomClampPartials<Cfg>&,
                     const Radial&, const Core&, const Tension&, typename Cfg::Jacobian&) const {}
 };
 
@@ -184,7 +184,7 @@ class RomPolygon<Cfg, true> {
   // flux's partials (RomTension::link_flux_row). Every entry the W solver
   // reads is written (its J is never zeroed).
   template <class TCache, class Radial, class Core, class Tension>
-  void jacobian_row(const State& x, const TCache& c, const T& vc, const T& r2e, const RomClampPartials<T>& dfc,
+  void jacobian_row(const State& x, const TCache& c, const T& vc, const T& r2e, const RomClampPartials<Cfg>& dfc,
                     const Radial& radial, const Core& core, const Tension& tension, typename Cfg::Jacobian& J) const {
     if constexpr (Cfg::kTension) {
       tension.link_flux_row(x, c, vc, r2e, dfc, radial, core, psi_per_m_, J);

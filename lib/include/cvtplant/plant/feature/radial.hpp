@@ -290,7 +290,7 @@ class RomRadial<Cfg, true> {
     T dfb[N];
     #pragma GCC unroll 16
     for (int j = 0; j < N; ++j) dfb[j] = T(0);
-    for (int i = 0; i < dfc.n; ++i) dfb[dfc.col[i]] = dfc.val[i];
+    dfc.each([&](int col, const T& d) { dfb[col] = d; });
     const T(&dR)[2][N] = jac.dR;
     const T inv_cos1 = k.inv_cos1, inv_cos2 = k.inv_cos2, k1 = k.k1, c1 = k.c1;
     J(L::kRho, L::kRhoDot) = T(1);

@@ -62,9 +62,9 @@ class RomTension {
   }
   void cache(const RomTensionLoads<T, false>&, Cache&) const {}
   template <class Jac, class Radial, class Core>
-  void partials(const typename Cfg::State&, const Cache&, const RomClampPartials<T>& dfc, const T&, const T&,
+  void partials(const typename Cfg::State&, const Cache&, const RomClampPartials<Cfg>& dfc, const T&, const T&,
                 const Radial&, const Core&, Jac& jac) const {
-    for (int k = 0; k < dfc.n; ++k) jac.axial(dfc.col[k], dfc.val[k]);
+    dfc.each([&](int col, const T& d) { jac.axial(col, d); });
   }
   template <class A>
   void power(const Cache&, const T&, RomPower<A>&) const {}
@@ -181,13 +181,13 @@ class RomTension<Cfg, true> {
   // force's partials (feature/axial.hpp); vc, r2e the chain speed and driven
   // radius at x.
   template <class Jac, class Radial, class Core>
-  void partials(const State& x, const Cache& c, const RomClampPartials<T>& dfc, const T& vc, const T& r2e,
+  void partials(const State& x, const Cache& c, const RomClampPartials<Cfg>& dfc, const T& vc, const T& r2e,
                 const Radial& radial, const Core& k, Jac& jac) const {
     const ChainTension<T>& t = c.tension;
     const Slack sp = slack(x, t, vc, r2e, radial);
     // Clamped, the lumps press with the clamping force.
     if (!t.lifted && !t.on_stop)
-      for (int i = 0; i < dfc.n; ++i) jac.axial(dfc.col[i], dfc.val[i]);
+      dfc.each([&](int col, const T& d) { jac.axial(col, d); });
     // creep = g eps v_c, eps = dT / (kL + T_s):
     //   d creep = g v_c (d dT - eps d T_s) / (kL + T_s) + g eps d v_c.
     const T gv = g_ * vc;
@@ -201,7 +201,7 @@ class RomTension<Cfg, true> {
     jac.slip(0, L::kV2, c_xd);
     if (!k.hold2) jac.slip(0, L::kW2, c_w2);  // a held driven pulley's speed is no state
     if (sp.Fc != T(0))
-      for (int i = 0; i < dfc.n; ++i) jac.slip(0, dfc.col[i], -in_tension_unit(gve * (sp.Fc * dfc.val[i])));
+      dfc.each([&](int col, const T& d) { jac.slip(0, col, -in_tension_unit(gve * (sp.Fc * d))); });
     if constexpr (Cfg::kRadial) {
       // The strands' stretch g rho moves dT; the driven radius moves v_c and
       // T_c; the wrap angle moves c_F (floating point: no tension unit).
@@ -224,7 +224,7 @@ class RomTension<Cfg, true> {
   // partials per regime. Columns w2, x_i, xd_i, the clamping force's (delta;
   // rho with the radial DOF) and the radial DOF's.
   template <class Radial, class Core>
-  void link_flux_row(const State& x, const Cache& c, const T& vc, const T& r2e, const RomClampPartials<T>& dfc,
+  void link_flux_row(const State& x, const Cache& c, const T& vc, const T& r2e, const RomClampPartials<Cfg>& dfc,
                      const Radial& radial, const Core& k, const T& psi_per_m, typename Cfg::Jacobian& J) const {
     const ChainTension<T>& t = c.tension;
     const T rho_k = kL_ * t.inv_D;
@@ -246,12 +246,12 @@ class RomTension<Cfg, true> {
       J(L::kPsi, L::kDeltaDot) = T(0);
       J(L::kPsi, L::kRho) = T(0);
       if (sp.Fc != T(0))
-        for (int i = 0; i < dfc.n; ++i) J(L::kPsi, dfc.col[i]) = d_Ts * (sp.Fc * dfc.val[i]);
+        dfc.each([&](int col, const T& d) { J(L::kPsi, col) = d_Ts * (sp.Fc * d); });
       const T g2 = radial.wrap_g() + radial.wrap_g();
       J(L::kPsi, L::kRho) += psi_per_m * sp.vc_rho * rho_k + d_Ts * (sp.dT * (g2 * k.k1) + sp.rho);
       J(L::kPsi, L::kRhoDot) = d_Ts * sp.dT * (g2 * k.c1);
     } else if constexpr (Cfg::kAxial) {
-      J(L::kPsi, L::kDelta) = sp.Fc != T(0) && dfc.n > 0 ? Cfg::per_tau(d_Ts * (sp.Fc * dfc.val[0])) : T(0);
+      J(L::kPsi, L::kDelta) = sp.Fc != T(0) && dfc.on ? Cfg::per_tau(d_Ts * (sp.Fc * dfc.delta)) : T(0);
     }
   }
 
