@@ -89,7 +89,7 @@ class CvtRom {
   // contact forces and their partials), the tension state and the ripple's
   // phase, since the exponentials, the atan and the cosines are most of a
   // frame on a Cortex-M (docs/rom.md#cost).
-  struct Contact : Tension::Cache, Polygon::Cache, Law::Cache {
+  struct Contact : Tension::Cache, Polygon::Cache, Law::Cache, RoadLoad::Cache {
     T r1e{};  // effective driver radius [m]
   };
 
@@ -221,6 +221,7 @@ class CvtRom {
     using L = Layout;
     Contact c;
     polygon_.cache(x, c);
+    road_.cache(x(L::kW2), c);
     Loads<T> l;
     c.r1e = driver_radius(x);
     l.r2 = pitch_radius2(x);
@@ -263,11 +264,13 @@ class CvtRom {
   // --- the right-hand side ---
   template <class S>
   void derivative(const Eigen::Matrix<S, kStates, 1>& x, Eigen::Matrix<S, kStates, 1>& dxdt) const {
-    rows(x, loads(x), dxdt);
+    rows(x, loads(x), road_.load_torque(S(inputs.tau_load_Nm), x(Layout::kW2)), dxdt);
   }
   // The same from the contact already evaluated at x (c = contact(x)); bit
   // for bit derivative(x, dxdt).
-  void derivative(const State& x, const Contact& c, State& dxdt) const { rows(x, loads(x, c), dxdt); }
+  void derivative(const State& x, const Contact& c, State& dxdt) const {
+    rows(x, loads(x, c), road_.load_torque(inputs.tau_load_Nm, x(Layout::kW2), c), dxdt);
+  }
 
   // --- the Jacobian (docs/rom.md#jacobian) ---
   // Held pulleys get zero rows (and at a fixed ratio zero columns: their
@@ -314,7 +317,7 @@ class CvtRom {
     jac.driver_row(c.r1e, J);
     const Strands<T> st = strands(x);
     T rw2[N];  // the driven row
-    core_.driven_partials(r2, road_.load_torque_slope(x(L::kW2)), rw2);
+    core_.driven_partials(r2, road_.load_torque_slope(x(L::kW2), c), rw2);
     radial_.driven_partials(x, r2, st, core_, rw2);
     #pragma GCC unroll 16
     for (int j = 0; j < N; ++j) J(L::kW2, j) = rw2[j];
@@ -322,7 +325,7 @@ class CvtRom {
     #pragma GCC unroll 16
     for (int j = 0; j < N; ++j) dca[j] = r2 * rw2[j];
     if constexpr (Cfg::kRadial) {
-      const T w2dot = core_.driven_row(r2, st.s1, st.s2, road_.load_torque(inputs.tau_load_Nm, x(L::kW2)));
+      const T w2dot = core_.driven_row(r2, st.s1, st.s2, road_.load_torque(inputs.tau_load_Nm, x(L::kW2), c));
       radial_.chain_acceleration_partials(x, w2dot, dca);
     }
     core_.lump_rows(jac.dF, dca, J);
@@ -415,7 +418,7 @@ class CvtRom {
     const Acc sv1 = radial_.stretch_acc(x[L::kV1], radial_rho_dot_acc(x));
     const Acc sv2 = radial_.stretch_acc(x[L::kV2], radial_rho_dot_acc(x));
     RomPower<Acc> pw =
-        core_.power(x, tau_in, applied_load(xs, l.r2), l.F1, l.F2, Law::slip1(c), Law::slip2(c), sv1, sv2);
+        core_.power(x, tau_in, applied_load(xs, l.r2, c), l.F1, l.F2, Law::slip1(c), Law::slip2(c), sv1, sv2);
     axial_.power(x, pw);
     radial_.power(xs, l.Fr1, l.Fr2, core_.inv_cos1, core_.inv_cos2, pw);
     tension_.power(c, l.F1, pw);
@@ -429,13 +432,13 @@ class CvtRom {
   void set_driven_clamp_N(double f_N) { radial_.set_driven_clamp_N(f_N); }
 
  private:
-  // The right-hand side from the loads at x.
+  // The right-hand side from the loads at x and the load torque.
   template <class S>
-  void rows(const Eigen::Matrix<S, kStates, 1>& x, const Loads<S>& l, Eigen::Matrix<S, kStates, 1>& dxdt) const {
-    using L = Layout;
+  void rows(const Eigen::Matrix<S, kStates, 1>& x, const Loads<S>& l, const S& load,
+            Eigen::Matrix<S, kStates, 1>& dxdt) const {
     const Strands<S> st = strands(x);
     const S w1dot = core_.driver_row(S(inputs.tau_in_Nm), l.r1e, l.F1, l.F2);
-    const S w2dot = core_.driven_row(l.r2, st.s1, st.s2, road_.load_torque(S(inputs.tau_load_Nm), x(L::kW2)));
+    const S w2dot = core_.driven_row(l.r2, st.s1, st.s2, load);
     const S chain_acc = radial_.chain_acceleration(l.r2 * w2dot, x);
     core_.rows(x, w1dot, w2dot, chain_acc, l.F1, l.F2, st.s1, st.s2, dxdt);
     axial_.rows(x, saturated_command(), l.fclamp, dxdt);
@@ -445,11 +448,17 @@ class CvtRom {
 
   // The load torque as applied: the holding torque of a held driven pulley.
   T applied_load(const State& x, const T& r2) const {
-    if (core_.hold2) {
-      const Strands<T> st = strands(x);
-      return strand_torque(r2, st.s1, st.s2);
-    }
+    if (core_.hold2) return holding_torque(x, r2);
     return road_.load_torque(inputs.tau_load_Nm, x(Layout::kW2));
+  }
+  // The same at x from its contact c.
+  T applied_load(const State& x, const T& r2, const Contact& c) const {
+    if (core_.hold2) return holding_torque(x, r2);
+    return road_.load_torque(inputs.tau_load_Nm, x(Layout::kW2), c);
+  }
+  T holding_torque(const State& x, const T& r2) const {
+    const Strands<T> st = strands(x);
+    return strand_torque(r2, st.s1, st.s2);
   }
   Acc radial_rho_acc(const Acc* x) const {
     if constexpr (Cfg::kRadial) return x[Layout::kRho];
