@@ -180,9 +180,11 @@ class RomTension<Cfg, true> {
   // partials first, then the creep's, then the stop's). dfc: the clamping
   // force's partials (feature/axial.hpp); vc, r2e the chain speed and driven
   // radius at x.
+  // Inlined: the contact law's arrays it adds to then stay in registers
+  // (an out-of-line call took them to memory, docs/rom.md#cost).
   template <class Jac, class Radial, class Core>
-  void partials(const State& x, const Cache& c, const RomClampPartials<Cfg>& dfc, const T& vc, const T& r2e,
-                const Radial& radial, const Core& k, Jac& jac) const {
+  [[gnu::always_inline]] void partials(const State& x, const Cache& c, const RomClampPartials<Cfg>& dfc, const T& vc,
+                                       const T& r2e, const Radial& radial, const Core& k, Jac& jac) const {
     const ChainTension<T>& t = c.tension;
     const Slack sp = slack(x, t, vc, r2e, radial);
     // Clamped, the lumps press with the clamping force.
