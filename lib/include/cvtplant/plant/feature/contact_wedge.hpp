@@ -177,17 +177,17 @@ class RomWedgeContact {
       if (!(slope < k.slope_floor)) continue;
       // Extra dF_i/dv_t (negative: friction opposes slip).
       const T dg = -Cfg::per_tau(k.slope_floor - slope) * normal_force(fl, load[i]);
-      T dv[N];  // d v_t,i / dx
-      for (int j = 0; j < N; ++j) dv[j] = T(0);
-      if (!k.hold1) dv[L::kW1] = -r1e;
-      if (!k.hold2) dv[L::kW2] = r2;
-      dv[v_col[i]] = T(1);
-      for (int j = 0; j < N; ++j) {
-        if (dv[j] == T(0)) continue;
-        const T dF = dg * dv[j];
-        if (!k.hold1) J(L::kW1, j) -= r1e * dF * k.inv_J1;
-        J(v_col[i], j) += dF * k.inv_m;
-      }
+      // d v_t,i / dx: -r1e in w1, r2 in w2 (no column for a held pulley),
+      // 1 in xd_i; the columns in ascending order, each only where nonzero.
+      auto add = [&](int col, const T& dv) {
+        if (dv == T(0)) return;
+        const T dF = dg * dv;
+        if (!k.hold1) J(L::kW1, col) -= r1e * dF * k.inv_J1;
+        J(v_col[i], col) += dF * k.inv_m;
+      };
+      if (!k.hold1) add(L::kW1, -r1e);
+      if (!k.hold2) add(L::kW2, r2);
+      add(v_col[i], T(1));
     }
   }
 
