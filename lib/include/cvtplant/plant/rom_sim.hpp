@@ -116,13 +116,15 @@ class RomSimulator {
     if (contact_stale_) refresh_contact();
     const State x_prev = x_;
     const EnergyLedger<Acc> ledger_prev = ledger_;
-    const Contact contact_prev = contact_;
     const Carry carry_prev = carry_;
     const double driven_prev = driven_.force_N();
     auto roll_back = [&](RomFault why) {
       x_ = x_prev;
       ledger_ = ledger_prev;
-      contact_ = contact_prev;
+      // The contact of x_prev is evaluated again when it is next needed
+      // (only reset() clears the fault): copying it on every frame for the
+      // rare roll-back cost tens of instructions a frame (docs/rom.md#cost).
+      contact_stale_ = true;
       carry_ = carry_prev;
       driven_.set_force(driven_prev);
       plant_.set_driven_clamp_N(driven_prev);
