@@ -186,9 +186,10 @@ class CvtRom {
             strand_force(S(core_.k1), S(core_.c1), radial_.stretch(x(L::kX2), x), radial_.stretch_rate(x(L::kV2), x))};
   }
 
-  // Every load at x, evaluated afresh (any scalar S).
+  // Every load at x, evaluated afresh (any scalar S). Inlined, like rows():
+  // a call would pass the loads through memory (docs/rom.md#cost).
   template <class S>
-  Loads<S> loads(const Eigen::Matrix<S, kStates, 1>& x) const {
+  [[gnu::always_inline]] Loads<S> loads(const Eigen::Matrix<S, kStates, 1>& x) const {
     using L = Layout;
     Loads<S> l;
     l.r1e = driver_radius(x);
@@ -432,9 +433,10 @@ class CvtRom {
   void set_driven_clamp_N(double f_N) { radial_.set_driven_clamp_N(f_N); }
 
  private:
-  // The right-hand side from the loads at x and the load torque.
+  // The right-hand side from the loads at x and the load torque; inlined
+  // into each right-hand side (a call passed the loads through memory).
   template <class S>
-  void rows(const Eigen::Matrix<S, kStates, 1>& x, const Loads<S>& l, const S& load,
+  [[gnu::always_inline]] void rows(const Eigen::Matrix<S, kStates, 1>& x, const Loads<S>& l, const S& load,
             Eigen::Matrix<S, kStates, 1>& dxdt) const {
     const Strands<S> st = strands(x);
     const S w1dot = core_.driver_row(S(inputs.tau_in_Nm), l.r1e, l.F1, l.F2);
