@@ -111,14 +111,15 @@ CVT_TARGET_TEST(rom_frame_instruction_counts_float) {
   CHECK_GT(counts.seed_case1_wedging, counts.seed_case1);
   // The variable-ratio plant of ratio control over CAN (docs/rom.md#cost):
   // its goal is 10,000 instructions per frame, met by the analytic Jacobian,
-  // the 6x6 block solve and the contact shared with the ledger (4,746 on this
-  // image). The count is exact for one binary, but the code around the
-  // measured call (this file's lambdas, inlining) moves it by tens of
-  // instructions, so the band is 4 %: a change of the plant's work shows, a
-  // rebuild of this file does not.
+  // the 6x6 block solve and the contact shared with the ledger (4,563 on the
+  // M4F image, 4,444 on the M7's). The count is exact for one binary, but the
+  // code around the measured call (this file's lambdas, inlining) moves it by
+  // tens of instructions, so the band is 4 % above the M4F's count and 2 %
+  // below the M7's: a change of the plant's work shows, a rebuild of this
+  // file does not.
   CHECK_LE(counts.ratio_control, kGoalVariableRatio);
-  CHECK_GT(counts.ratio_control, 4560u);
-  CHECK_LT(counts.ratio_control, 4940u);
+  CHECK_GT(counts.ratio_control, 4350u);
+  CHECK_LT(counts.ratio_control, 4750u);
   // A frame on the end stop is taken in stop_substeps = 2 steps of one W
   // (docs/rom.md#end-stop): the second substep without a Jacobian and a
   // factorisation, 1.53 times a frame off the stop on this image (7,254).
