@@ -205,8 +205,12 @@ TEST_CASE("composition: the Jacobian's floor cases reach the slack strand's floo
   CHECK(rom.contact(state_at(rom, 99.0, -0.4, 0.004, -0.01, 3300.0)).tension.floored);
 }
 
-// Open: this run faults in its first frame (fault code 9) with the driver
-// held at 80 rad/s; skipped until its start is fixed.
+// Open: with the plant of the scene's features the run no longer faults
+// (it ran a plant with the road load for a scene without it:
+// RomFault::scene_features), and every check holds for g = 1; for g = 0 the
+// exit lump still slides at -5.1e-5 m/s after 30 s where the check expects
+// -g eps v_c = 0 within 1e-7 m/s. Skipped until that residual slip is
+// explained (not yet at the steady state, or a slip the law leaves).
 TEST_CASE("composition: a gripping entry lump turns the pulleys at (r2/r1)(1 + g eps) on the variable-ratio plant" *
           doctest::skip(true)) {
   // docs/rom.md#tension-radial: the driver held at 80 rad/s against a
@@ -230,7 +234,10 @@ TEST_CASE("composition: a gripping entry lump turns the pulleys at (r2/r1)(1 + g
     s.params.creep_gain = g;
     cvt::RomOutputs<double> o;
     double rho = 0;
-    REQUIRE(cvt::run_scene<double, kFull | f::road_load>(
+    // The plant of the scene's features: without the road load, so the load
+    // is the constant 40 N m (a plant with more features than its scene is
+    // refused, RomFault::scene_features).
+    REQUIRE(cvt::run_scene<double, kFull>(
                 s, cvt::sim_config_of(s),
                 [&](long, double, const auto& sim) {
                   o = sim.outputs();
