@@ -36,6 +36,14 @@ inline void fixed_sheaves_ripple(Scene& s) {
   s.params.fixed_sheaves = true;
   s.params.ripple_gain = 0.148;
 }
+// tools/scenes/ratio-control-tension.toml: ratio-control's primary clamping
+// stepped from 3.3 to 3.5 kN at 2 s (an upshift), and the same with the
+// link-passing ripple of tools/scenes/seed-case1-ripple.toml.
+inline void primary_step(Scene& s) { s.clamp = step_profile(3300.0, 3500.0, 2.0); }
+inline void primary_step_ripple(Scene& s) {
+  primary_step(s);
+  s.params.ripple_gain = 0.148;
+}
 
 // The feature mask is a template argument of the plant, so the rows are
 // visited at compile time: v.template visit<Mask>(row) for every row.
@@ -89,6 +97,18 @@ void for_each_case(Visitor&& v) {
       Case{"scene/seed-case1-ripple", "seed-case1", 4, true, nullptr, &fixed_sheaves_ripple});
   v.template visit<f::tension | f::polygon>(
       Case{"scene/seed-case1-ripple/off", "seed-case1", 4, true, nullptr, &fixed_sheaves});
+  // Every feature of the variable-ratio plant at once (docs/rom.md#tension-radial):
+  // ratio-control with the chain's tension state off the end stops, and
+  // clamp-step with the same features on the hub stop (its 1.2 kN has driven
+  // the chain there by 1 s: two substeps of one W, docs/rom.md#end-stop);
+  // with chordal action and the link ripple at 4 substeps, the ripple's cost.
+  constexpr std::uint32_t full = f::axial | f::road_load | f::wedging | f::tension;
+  v.template visit<full>(Case{"scene/ratio-control-tension", "ratio-control", 0, true, nullptr, &primary_step});
+  v.template visit<full>(
+      Case{"scene/ratio-control-tension/no-ledger", "ratio-control", 0, false, nullptr, &primary_step});
+  v.template visit<full>(Case{"scene/clamp-step+wedging+tension-on-stop", "clamp-step", 0});
+  v.template visit<full | f::polygon>(
+      Case{"scene/ratio-control-tension/ripple-x4", "ratio-control", 4, true, nullptr, &primary_step_ripple});
 }
 
 // Where the measured frame starts: the scene run on its own input profiles

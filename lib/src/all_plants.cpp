@@ -7,8 +7,7 @@ template <class T>
 IRomSimulator<T>* AllRomPlants<T>::build(std::uint32_t features, const RomParams& p, const RomSimConfig& c,
                                          void* storage) {
   using namespace all_plants_detail;
-  if (IRomSimulator<T>* s = build_low<T>(features, p, c, storage)) return s;
-  if (IRomSimulator<T>* s = build_polygon<T>(features, p, c, storage)) return s;
+  if (IRomSimulator<T>* s = build_plain<T>(features, p, c, storage)) return s;
   if (IRomSimulator<T>* s = build_tension<T>(features, p, c, storage)) return s;
   if constexpr (kHasWedging<T>) return build_wedging<T>(features, p, c, storage);
   return nullptr;

@@ -1,10 +1,9 @@
 // Explicit instantiations that make the core archive compile its templates
 // with the build's own flags: the seed oscillator with every method in every
 // scalar type, and the real-time plant's frame stepper in the two embedded
-// types with the widest feature sets each has (wedging and everything but
-// tension, or tension and everything but wedging, in float; all but wedging
-// in q16.16). The embedded no-heap link check (tests/target, whole
-// archive) then sees the code of every feature; a firmware image still
+// types with the widest feature set each has (every feature in float; all
+// but wedging in q16.16). The embedded no-heap link check (tests/target,
+// whole archive) then sees the code of every feature; a firmware image still
 // compiles only the plants it names. Double plants run on hosts, where the
 // host tools compile all of them (lib/src/all_plants_*.cpp).
 #include "cvtplant/integrate/method.hpp"
@@ -26,8 +25,7 @@ template void step<StickSlipOscillator<float>>(Method, const StickSlipOscillator
 template void step<StickSlipOscillator<q16_16>>(Method, const StickSlipOscillator<q16_16>&,
                                                 StateOf<StickSlipOscillator<q16_16>>&, q16_16);
 
-template class RomSimulator<float, rom_feature::all>;
-template class RomSimulator<float, rom_feature::basic | rom_feature::tension>;
+template class RomSimulator<float, rom_feature::known>;
 template class RomSimulator<q16_16, rom_feature::basic | rom_feature::tension>;
 
 }  // namespace cvt

@@ -111,6 +111,9 @@ TEST_CASE("ROM analytic Jacobian equals the dual-number Jacobian for every featu
     // The chain's tension state (docs/rom.md#tension; its regimes in test_rom_tension.cpp).
     check_jacobian_against_duals<f::tension>(p, x0, 3000.0);
     check_jacobian_against_duals<f::tension | f::basic>(p, x0, 3000.0);
+    // Every feature at once: tension on the radial DOF (docs/rom.md#tension-radial;
+    // its regimes in test_rom_composition.cpp).
+    check_jacobian_against_duals<f::known>(p, x0, 3000.0);
   }
   // Near stick, where the atan slope dominates (case 2, the last law above).
   x0.omega2_rad_s = 100.0;
@@ -278,6 +281,10 @@ TEST_CASE("ROM structured linear solve equals the dense LU step for every featur
     // (docs/rom.md#link-ripple).
     check_structured_step<f::tension | f::polygon>(p, x0, m);
     check_structured_step<f::tension | f::polygon | f::axial>(p, x0, m);
+    // Tension on the radial DOF; with chordal action the phase row's radial
+    // columns are eliminated with the kinematic rows delta and rho.
+    check_structured_step<f::axial | f::wedging | f::tension>(p, x0, m);
+    check_structured_step<f::known>(p, x0, m);
     p.fixed_sheaves = true;
     check_structured_step<f::tension | f::road_load>(p, x0, m);
     check_structured_step<f::tension | f::polygon | f::road_load>(p, x0, m);
@@ -289,6 +296,7 @@ TEST_CASE("ROM structured linear solve equals the dense LU step for every featur
     p.hold_driver_speed = false;
     p.hold_driven_speed = true;
     check_structured_step<f::tension | f::polygon>(p, x0, m);
+    check_structured_step<f::known>(p, x0, m);
     p.hold_driven_speed = false;
   }
 }

@@ -120,7 +120,7 @@ TEST_CASE("wedging: contact forces satisfy seed Eq. 7 and oppose the slip veloci
       for (const double rhod : {-0.02, 0.0, 0.01}) {
         CAPTURE(vt);
         CAPTURE(rhod);
-        const auto c = rom.wedge_contact(vt, vt, rhod, fax);
+        const auto c = rom.lump_forces(vt, vt, rhod, fax);
         const double gr = rhod / cb;
         const double F = std::hypot(c.F1, c.Fr1);
         // N from Eq. 7, and |F_f| = mu(|v|) s(|v|) N.
@@ -485,12 +485,16 @@ TEST_CASE_TEMPLATE("wedging: the right-hand side and the power terms from the sh
       const cvt::RomPower<A> pc = rom.power(x, c);
       const A rd = A(x(LL::kRhoDot));
       const A w1 = A(x(LL::kW1)), w2 = A(x(LL::kW2)), v1 = A(x(LL::kV1)), v2 = A(x(LL::kV2));
-      const auto& k = rom.constants();
-      const A sv1 = v1 + A(k.acc.wrap_g) * rd, sv2 = v2 + A(k.acc.wrap_g) * rd;
+      // The ledger's constants in the accounting type, from the set-up values
+      // (the wrap-tension share is 0 here: the strands' stretch rate is xd_i).
+      const A g = A(p.wrap_tension_share);
+      const A sv1 = v1 + g * rd, sv2 = v2 + g * rd;
+      const A inv_cos1 = A(rom.core().inv_cos1), inv_cos2 = A(rom.core().inv_cos2);
       const A friction_W = -(A(o.friction1_N) * A(o.v_rel1_m_s) + A(o.friction2_N) * A(o.v_rel2_m_s)) -
-                           (A(o.radial_friction1_N) * rd * A(k.inv_cos1) + A(o.radial_friction2_N) * rd * A(k.inv_cos2));
-      const A damping_W = k.acc.c1 * (sv1 * sv1 + sv2 * sv2) + k.acc.c2 * (v1 - v2) * (v1 - v2) +
-                          k.acc.cs * A(x(LL::kDeltaDot)) * A(x(LL::kDeltaDot)) + k.acc.cr * rd * rd;
+                           (A(o.radial_friction1_N) * rd * inv_cos1 + A(o.radial_friction2_N) * rd * inv_cos2);
+      const A damping_W = A(p.c1_Ns_m) * (sv1 * sv1 + sv2 * sv2) + A(p.c2_Ns_m) * (v1 - v2) * (v1 - v2) +
+                          A(p.sheave_damping_Ns_m) * A(x(LL::kDeltaDot)) * A(x(LL::kDeltaDot)) +
+                          A(p.radial_damping_Ns_m) * rd * rd;
       CHECK(pc.input_W == A(o.tau_in_Nm) * w1);
       CHECK(pc.load_W == A(o.tau_load_Nm) * w2);
       CHECK(pc.actuator_W == A(x(LL::kFh)) * A(x(LL::kDeltaDot)));

@@ -79,7 +79,7 @@ ChainModel::ChainModel(const MbdParams& p) : p_(p), geo_(p.r1_m, p.r2_m, p.cente
   ledger_base_ = sheave_base_ + (clamped() ? 4 : 0);
   n_ = ledger_base_ + 5;
   inertia_ = p.link_inertia();
-  inv_w_eps_ = 1.0 / p.road.w_eps_rad_s;  // as the real-time plant (rom_constants.hpp)
+  inv_w_eps_ = 1.0 / p.road.w_eps_rad_s;  // as the real-time plant (plant/feature/road_load.hpp)
   thrust_ratio_ = geo_.wrap_rad[1] / geo_.wrap_rad[0];
   force_.assign(3 * static_cast<std::size_t>(n_links_), 0.0);
   cos_.assign(static_cast<std::size_t>(n_links_), 1.0);

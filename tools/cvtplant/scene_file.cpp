@@ -15,6 +15,7 @@
 #include "options.hpp"
 #include "cvtplant/files/names.hpp"
 #include "cvtplant/friction/friction_fields.hpp"
+#include "cvtplant/plant/rom_features.hpp"
 #include "cvtplant/scene/scene_params.hpp"
 #include "cvtplant/scene/builtin_scenes.hpp"
 
@@ -41,16 +42,9 @@ std::string names_of(const cvt::NamedValue<E> (&table)[N]) {
   return s;
 }
 
-struct FeatureName {
-  const char* name;
-  std::uint32_t bit;
-};
-constexpr FeatureName kFeatureNames[] = {{"axial", cvt::rom_feature::axial},
-                                         {"road_load", cvt::rom_feature::road_load},
-                                         {"deformation", cvt::rom_feature::deformation},
-                                         {"polygon", cvt::rom_feature::polygon},
-                                         {"wedging", cvt::rom_feature::wedging},
-                                         {"tension", cvt::rom_feature::tension}};
+// The features' names are the plant's (plant/rom_features.hpp).
+using FeatureName = cvt::RomFeatureName;
+constexpr const FeatureName (&kFeatureNames)[std::size(cvt::kRomFeatureNames)] = cvt::kRomFeatureNames;
 constexpr FeatureName kLogNames[] = {{"torques", cvt::rom_log::torques},
                                      {"friction", cvt::rom_log::friction},
                                      {"ratios", cvt::rom_log::ratios},

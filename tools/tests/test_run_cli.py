@@ -353,7 +353,8 @@ class BadInput(unittest.TestCase):
             (tension + 'fixed_sheaves = "yes"\n', (), (":4:", "params.fixed_sheaves", "true or false")),
             ('features = ["axial", "tension"]\n[params]\nfixed_sheaves = true\n', (),
              (":4:", "params.fixed_sheaves", "axial")),
-            ('features = ["axial", "wedging", "tension"]\n', (), (":2:", "features", "wedging")),
+            ('features = ["axial", "wedging", "tension"]\n[params]\nfixed_sheaves = true\n', (),
+             (":4:", "params.fixed_sheaves", "axial")),
             ('features = ["axial"]\nlog = ["torques", "tension"]\n', (), (":3:", "log", "tension feature")),
             (tension + "chain_stiffness_N = 4e7\n", ("--scalar", "fixed"), ("chain_stiffness_N", "fixed-point range")),
         ]

@@ -107,10 +107,16 @@ inline S driven_radius_change(const S& rho, const S& a1, const S& a2, const S& a
 // tau_load + T0 tanh(w2 / w_eps) + c_v w2 + c_a w2 |w2| [N m], w_eps given as
 // its inverse. tanh and abs are the core's (cvt::dm for double and float;
 // Fixed and Dual carry their own), so a dual number w2 gives the slope too.
+// road_load_torque_at takes tanh(w2 / w_eps) already evaluated (the plant
+// keeps it with a state's contact, docs/rom.md#cost).
+template <class S>
+inline S road_load_torque_at(const S& tau_load, const S& T0, const S& tanh_w, const S& cv, const S& ca, const S& w2) {
+  return tau_load + T0 * tanh_w + cv * w2 + ca * w2 * abs(w2);
+}
 template <class S>
 inline S road_load_torque(const S& tau_load, const S& T0, const S& inv_w_eps, const S& cv, const S& ca,
                           const S& w2) {
-  return tau_load + T0 * tanh(w2 * inv_w_eps) + cv * w2 + ca * w2 * abs(w2);
+  return road_load_torque_at(tau_load, T0, S(tanh(w2 * inv_w_eps)), cv, ca, w2);
 }
 
 }  // namespace cvt

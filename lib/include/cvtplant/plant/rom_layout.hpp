@@ -67,7 +67,6 @@ struct RomLayout {
   // No states of its own: the chain's tension is a function of the state.
   static constexpr bool kTension = (F & rom_feature::tension) != 0;
   static_assert(!kWedge || kAxial, "the wedging feature needs the axial feature (docs/rom.md#wedging)");
-  static_assert(!(kWedge && kTension), "the tension feature does not combine with wedging (docs/rom.md#tension)");
   static constexpr RomStateIndex kIndex = rom_state_index(F);
   static constexpr int kW1 = kIndex.w1, kW2 = kIndex.w2, kX1 = kIndex.x1, kV1 = kIndex.xd1, kX2 = kIndex.x2,
                        kV2 = kIndex.xd2;

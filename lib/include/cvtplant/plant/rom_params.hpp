@@ -7,26 +7,9 @@
 #include "cvtplant/friction/friction_law.hpp"
 #include "cvtplant/math/detmath.hpp"
 #include "cvtplant/physics/seed.hpp"
+#include "cvtplant/plant/rom_features.hpp"
 
 namespace cvt {
-
-// Optional physics, chosen at compile time (docs/rom.md#features). A plant
-// instantiated without a bit carries neither its states nor its code.
-namespace rom_feature {
-inline constexpr std::uint32_t axial = 1u << 0;        // actuator lag + sheave axial DOF, F_ax = bolt force
-inline constexpr std::uint32_t road_load = 1u << 1;    // tau_load += T0 tanh(w2/w_eps) + c_v w2 + c_a w2|w2|
-inline constexpr std::uint32_t deformation = 1u << 2;  // seed Eq. 3-4 flank angle per lump
-inline constexpr std::uint32_t polygon = 1u << 3;      // chordal action of the driver wrap (needs phi1 phase)
-inline constexpr std::uint32_t wedging = 1u << 4;      // radial chain DOF, seed Eq. 7, variable ratio (needs axial)
-inline constexpr std::uint32_t tension = 1u << 5;      // chain tension: creep, centrifugal unloading, sheave stops (not with wedging)
-// The first four features, each of which every scalar type supports.
-inline constexpr std::uint32_t basic = axial | road_load | deformation | polygon;
-// The widest plant: every feature but tension (wedging is floating point only).
-inline constexpr std::uint32_t all = basic | wedging;
-// Every defined bit. Tension combines with every feature but wedging
-// (docs/rom.md#tension), in every scalar type.
-inline constexpr std::uint32_t known = all | tension;
-}  // namespace rom_feature
 
 struct RomParams {
   // Geometry (seed Table 1 / section 4; physics/seed.hpp).
@@ -140,12 +123,16 @@ inline double rom_ripple_amplitude(const RomParams& p) {
 
 // The link phase's rate at a starting state, or a bound of it [rad/s]: w1,
 // or with the tension feature (2 alpha / L) r2 |w2| kL / (kL + T_s) <= (2
-// alpha / L) r2 |w2| (docs/rom.md#link-ripple), which scene validation holds
-// against rom_polygon_resolved_speed_rad_s.
+// alpha / L) r2 |w2| (docs/rom.md#link-ripple), r2 the driven radius at the
+// chain's starting radial offset (wedging; 0 at a fixed ratio), which scene
+// validation holds against rom_polygon_resolved_speed_rad_s.
 inline double rom_polygon_phase_rate_bound_rad_s(const RomParams& p, double omega1_rad_s, double omega2_rad_s,
-                                                 bool tension) {
-  const double w = tension ? 2.0 * dm::asin_setup(p.pitch_m / (2.0 * p.r1_m)) / p.pitch_m * p.r2_m * omega2_rad_s
-                           : omega1_rad_s;
+                                                 bool tension, double radius_offset_m = 0.0) {
+  const double r2 = radius_offset_m == 0.0
+                        ? p.r2_m
+                        : seed::driven_pitch_radius_m(p.r1_m, p.r2_m, p.center_distance_m, radius_offset_m);
+  const double w =
+      tension ? 2.0 * dm::asin_setup(p.pitch_m / (2.0 * p.r1_m)) / p.pitch_m * r2 * omega2_rad_s : omega1_rad_s;
   return w < 0.0 ? -w : w;
 }
 

@@ -9,6 +9,7 @@
 
 #include "cvtplant/integrate/method.hpp"
 #include "cvtplant/plant/cvt_rom.hpp"
+#include "cvtplant/plant/feature/driven_clamp.hpp"
 #include "cvtplant/plant/rom_energy.hpp"
 #include "cvtplant/plant/rom_step.hpp"
 #include "cvtplant/plant/rom_watchdog.hpp"
@@ -44,16 +45,19 @@ struct RomSimConfig {
   bool stop_keep_w = true;
 };
 
-template <class T, std::uint32_t Features = 0>
+// Features: the feature bits compiled in; Runtime: the stateless ones carried
+// and switched at set-up by `features` (CvtRom; the host dispatch,
+// docs/rom.md#build-time).
+template <class T, std::uint32_t Features = 0, std::uint32_t Runtime = 0>
 class RomSimulator {
  public:
   using Scalar = T;
-  using Plant = CvtRom<T, Features>;
+  using Plant = CvtRom<T, Features, Runtime>;
   using State = typename Plant::State;
   using Acc = typename Plant::Acc;
 
-  RomSimulator(const RomParams& p, const RomSimConfig& c)
-      : plant_(p),
+  RomSimulator(const RomParams& p, const RomSimConfig& c, std::uint32_t features = Features)
+      : plant_(p, features),
         cfg_(c),
         // The plant integrates in its own time unit (RomUnits; 1 s except
         // fixed point); the ledger stays in seconds.
@@ -61,11 +65,7 @@ class RomSimulator {
         h_acc_(Acc(c.frame_s / static_cast<double>(c.substeps < 1 ? 1 : c.substeps))),
         rel_tol_(Acc(c.energy_rel_tol)),
         abs_tol_(Acc(c.energy_abs_tol_J)),
-        driven_cmd_N_(p.driven_clamp_N),
-        driven_N_(p.driven_clamp_N),
-        // Exact discretisation of the first-order actuator over one frame:
-        // F += (F_cmd - F)(1 - exp(-frame / tau_h)) (docs/rom.md#driven-clamping).
-        driven_lag_(1.0 - dm::exp(-c.frame_s / p.actuator_tau_s)),
+        driven_(p, c.frame_s),
         frame_(T(c.frame_s / Plant::U::time_s)),
         speed_limit_(T(p.speed_limit_rad_s)),
         resolved_speed_(T(rom_polygon_resolved_speed_rad_s(
@@ -78,13 +78,10 @@ class RomSimulator {
   // actuator lag, one update per frame (docs/rom.md#driven-clamping). The
   // default is the set-up value RomParams::driven_clamp_N; reset() starts
   // the actuator at the command. No effect without wedging.
-  void set_driven_clamp_command(double f_N) {
-    const double fmax = plant_.params().clamp_max_N;
-    driven_cmd_N_ = f_N < 0.0 ? 0.0 : (f_N > fmax ? fmax : f_N);
-  }
-  double driven_clamp_command_N() const { return driven_cmd_N_; }
+  void set_driven_clamp_command(double f_N) { driven_.set_command(f_N); }
+  double driven_clamp_command_N() const { return driven_.command_N(); }
   // The driven clamping force F_ax2 the plant applies now [N].
-  double driven_clamp_N() const { return driven_N_; }
+  double driven_clamp_N() const { return driven_.force_N(); }
   // Frames taken again with stop_substeps (docs/rom.md#end-stop).
   long stop_refined_frames() const { return stop_refined_; }
 
@@ -94,8 +91,8 @@ class RomSimulator {
     x_ = plant_.initial_state(x0);
     fault_ = RomFault::none;
     carry_.clear();
-    driven_N_ = driven_cmd_N_;
-    plant_.set_driven_clamp_N(driven_N_);
+    driven_.reset();
+    plant_.set_driven_clamp_N(driven_.force_N());
     stop_refined_ = 0;
     ledger_ = EnergyLedger<Acc>{};
     if (cfg_.energy_ledger) ledger_.stored0_J = ledger_.stored_J = plant_.stored_energy(x_);
@@ -113,22 +110,24 @@ class RomSimulator {
     // chain's axial force and with it the creep, which the contact carries; a
     // new command makes the contact of the frame's start stale.
     if constexpr (Plant::Layout::kTension && !Plant::Layout::kAxial) {
-      if (!plant_.constants().ten_fixed && !(u.clamp_N == plant_.inputs.clamp_N)) contact_stale_ = true;
+      if (!plant_.tension().fixed_sheaves() && !(u.clamp_N == plant_.inputs.clamp_N)) contact_stale_ = true;
     }
     plant_.inputs = u;
     if (contact_stale_) refresh_contact();
     const State x_prev = x_;
     const EnergyLedger<Acc> ledger_prev = ledger_;
-    const Contact contact_prev = contact_;
     const Carry carry_prev = carry_;
-    const double driven_prev = driven_N_;
+    const double driven_prev = driven_.force_N();
     auto roll_back = [&](RomFault why) {
       x_ = x_prev;
       ledger_ = ledger_prev;
-      contact_ = contact_prev;
+      // The contact of x_prev is evaluated again when it is next needed
+      // (only reset() clears the fault): copying it on every frame for the
+      // rare roll-back cost tens of instructions a frame (docs/rom.md#cost).
+      contact_stale_ = true;
       carry_ = carry_prev;
-      driven_N_ = driven_prev;
-      plant_.set_driven_clamp_N(driven_N_);
+      driven_.set_force(driven_prev);
+      plant_.set_driven_clamp_N(driven_prev);
       fault_ = why;
       return fault_;
     };
@@ -158,7 +157,7 @@ class RomSimulator {
     // docs/rom.md#tension: in fixed point kappa m' v_c^2 saturates beyond the Q
     // range, and what the tension law makes of it means nothing.
     if constexpr (Plant::Layout::kTension && Plant::U::kScaled) {
-      if (abs_of(x_(Plant::Layout::kW2)) > plant_.constants().ten_w2_max)
+      if (abs_of(x_(Plant::Layout::kW2)) > plant_.tension().speed_limit())
         return roll_back(RomFault::tension_out_of_range);
     }
     if (cfg_.energy_ledger && cfg_.watchdog_energy) {
@@ -168,7 +167,8 @@ class RomSimulator {
     return fault_;
   }
 
-  static constexpr std::uint32_t features() { return Features; }
+  // The plant's features: those compiled in and those switched on at set-up.
+  std::uint32_t features() const { return plant_.features(); }
   RomOutputs<T> outputs() const { return plant_.outputs(x_); }
   // The state in the plant's units (RomUnits: SI except fixed point, whose
   // displacements are in 2^-10 m); state_si() converts for logs.
@@ -267,26 +267,32 @@ class RomSimulator {
   // frame starts and ends off the stop (docs/rom.md#end-stop).
   bool near_stop(const State& x) const {
     using L = typename Plant::Layout;
-    const T rho = x(L::kRho), rhod = x(L::kRhoDot);
-    const T reach = (rho < T(0) ? -rho : rho) + (rhod < T(0) ? -rhod : rhod) * frame_;
-    return !(reach < plant_.constants().travel);
+    if constexpr (L::kWedge) {
+      const T rho = x(L::kRho), rhod = x(L::kRhoDot);
+      const T reach = (rho < T(0) ? -rho : rho) + (rhod < T(0) ? -rhod : rhod) * frame_;
+      return !(reach < plant_.radial().travel());
+    } else {
+      (void)x;
+      return false;
+    }
   }
 
-  // docs/rom.md#driven-clamping: the driven actuator's frame update. The
-  // driven clamping acts on the chain as a potential, -2 tan(beta0) F_ax2
-  // (r2 - r2_m); changing F_ax2 at a fixed state changes that potential by
-  // exactly the work the actuator books here, so the ledger stays closed.
+  // docs/rom.md#driven-clamping: the driven actuator's frame update
+  // (feature/driven_clamp.hpp). The driven clamping acts on the chain as a
+  // potential, -2 tan(beta0) F_ax2 (r2 - r2_m); changing F_ax2 at a fixed
+  // state changes that potential by exactly the work the actuator books
+  // here, so the ledger stays closed.
   void update_driven_clamp() {
-    const double next = driven_N_ + (driven_cmd_N_ - driven_N_) * driven_lag_;
-    if (next == driven_N_) return;
+    const double next = driven_.next_force_N();
+    if (next == driven_.force_N()) return;
     if (!cfg_.energy_ledger) {
-      driven_N_ = next;
-      plant_.set_driven_clamp_N(driven_N_);
+      driven_.set_force(next);
+      plant_.set_driven_clamp_N(next);
       return;
     }
     const Acc before = plant_.stored_energy(x_);
-    driven_N_ = next;
-    plant_.set_driven_clamp_N(driven_N_);
+    driven_.set_force(next);
+    plant_.set_driven_clamp_N(next);
     ledger_.actuator_J += plant_.stored_energy(x_) - before;
   }
   static T abs_of(const T& v) { return v < T(0) ? -v : v; }
@@ -311,7 +317,7 @@ class RomSimulator {
   Carry carry_{};
   bool contact_stale_ = true;
   long frames_ = 0;
-  double driven_cmd_N_, driven_N_, driven_lag_;
+  RomDrivenClamp driven_;
   T frame_;  // one frame in the plant's time unit
   long stop_refined_ = 0;
   T speed_limit_, resolved_speed_;

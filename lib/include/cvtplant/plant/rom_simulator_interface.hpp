@@ -76,19 +76,21 @@ class IRomSimulator {
 
 // RomSimulator<T, F> behind the interface. `final`, so a caller that holds
 // the concrete type calls it directly.
-template <class T, std::uint32_t F>
+template <class T, std::uint32_t F, std::uint32_t D = 0>
 class ErasedRomSimulator final : public IRomSimulator<T> {
  public:
-  using Sim = RomSimulator<T, F>;
+  using Sim = RomSimulator<T, F, D>;
   using Plant = typename Sim::Plant;
   using State = typename Plant::State;
   using Jacobian = typename Plant::Jacobian;
   using Acc = RomAcc<T>;
   static constexpr int kStates = Plant::kStates;
 
-  ErasedRomSimulator(const RomParams& p, const RomSimConfig& c) : sim_(p, c), cfg_(c) {}
+  // `features`: F and the bits of D the scene asks for.
+  ErasedRomSimulator(const RomParams& p, const RomSimConfig& c, std::uint32_t features = F)
+      : sim_(p, c, features), cfg_(c) {}
 
-  std::uint32_t features() const override { return F; }
+  std::uint32_t features() const override { return sim_.features(); }
   int state_count() const override { return kStates; }
   void reset(const RomInitial& x0, const RomInputs<T>& u0) override { sim_.reset(x0, u0); }
   RomFault step_frame(const RomInputs<T>& u) override { return sim_.step_frame(u); }

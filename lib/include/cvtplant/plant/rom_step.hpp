@@ -20,9 +20,10 @@
 //   the core rows (w1, w2, xd1, xd2; with wedging also deltadot, rhodot)
 //     then form a dense 4x4 (6x6) system;
 //   with chordal action and the tension feature the phase row psi' =
-//     (2 alpha / L) v_c kL / (kL + T_s) has entries in w2, x_i, xd_i and
-//     delta (docs/rom.md#link-ripple): with k_x_i substituted it reads
-//     k_psi = f_psi + a J(psi, x_i) f_x_i + a J(psi, delta) k_delta
+//     (2 alpha / L) v_c kL / (kL + T_s) has entries in w2, x_i, xd_i,
+//     delta and with wedging rho, rho' (docs/rom.md#link-ripple): with the
+//     kinematic k_p substituted it reads
+//     k_psi = f_psi + sum_p a J(psi, p) f_p [+ a J(psi, delta) k_delta]
 //     + sum_c g_c k_c over the core columns, substituted into the core rows
 //     like a kinematic row.
 #include <cstdint>
@@ -36,9 +37,9 @@ namespace cvt {
 
 template <class T, std::uint32_t F>
 class RomWSolver {
-  using Plant = CvtRom<T, F>;
   using L = RomLayout<F>;
-  using Vec = typename Plant::State;
+  using Vec = Eigen::Matrix<T, L::kStates, 1>;
+  using Jac = Eigen::Matrix<T, L::kStates, L::kStates>;
   static constexpr bool kWedge = L::kWedge;
   // Core states, solved as one dense system: the pulley speeds and lump
   // velocities, and with wedging the bolt and radial velocities.
@@ -56,20 +57,22 @@ class RomWSolver {
   // W = I - a J for the Jacobian J at the step's start. Reads only the
   // entries the structure above names: the core rows, the kinematic rows'
   // entries and the axial block (CvtRom::jacobian_entries writes those).
-  void factor(const typename Plant::Jacobian& J, const T& a_ref) {
+  void factor(const Jac& J, const T& a_ref) {
     // By value: a reference could alias the stores below, and be read again after each.
     const T a = a_ref;
     #pragma GCC unroll 8
     for (int p = 0; p < kNumKin; ++p) kin_[p] = a * J(kKin[p], kCore[kKinCore[p]]);
     if constexpr (kPhaseRow) {
-      // k_psi's coefficients: the core columns, x_i through k_x_i = f_x_i + kin_i k_xd_i.
-      ph_.x[0] = a * J(L::kPsi, L::kX1);
-      ph_.x[1] = a * J(L::kPsi, L::kX2);
+      // k_psi's coefficients: the core columns, and the kinematic ones
+      // through k_p = f_p + kin_p k_c(p).
+      #pragma GCC unroll 8
+      for (int p = 0; p < kNumKin; ++p) ph_.x[p] = a * J(L::kPsi, kKin[p]);
       #pragma GCC unroll 8
       for (int c = 0; c < kM; ++c) ph_.c[c] = a * J(L::kPsi, kCore[c]);
-      ph_.c[2] += ph_.x[0] * kin_[0];
-      ph_.c[3] += ph_.x[1] * kin_[1];
-      if constexpr (L::kAxial) ph_.d = a * J(L::kPsi, L::kDelta);
+      #pragma GCC unroll 8
+      for (int p = 0; p < kNumKin; ++p) ph_.c[kKinCore[p]] += ph_.x[p] * kin_[p];
+      // Without wedging delta is in the axial block, solved first.
+      if constexpr (L::kAxial && !kWedge) ph_.d = a * J(L::kPsi, L::kDelta);
     }
     #pragma GCC unroll 8
     for (int r = 0; r < kM; ++r) {
@@ -120,8 +123,10 @@ class RomWSolver {
     // The phase row's part that does not depend on the core unknowns.
     [[maybe_unused]] T f_psi(0);
     if constexpr (kPhaseRow) {
-      f_psi = f(L::kPsi) + ph_.x[0] * f(L::kX1) + ph_.x[1] * f(L::kX2);
-      if constexpr (L::kAxial) f_psi += ph_.d * k_axial;
+      f_psi = f(L::kPsi);
+      #pragma GCC unroll 8
+      for (int p = 0; p < kNumKin; ++p) f_psi += ph_.x[p] * f(kKin[p]);
+      if constexpr (L::kAxial && !kWedge) f_psi += ph_.d * k_axial;
     }
     T rhs[kM];
     #pragma GCC unroll 8
@@ -217,7 +222,7 @@ class RomWSolver {
   // The phase row with the tension feature (kPhaseRow): its coefficients of
   // f_x_i, k_delta and the core unknowns, and the core rows' W(r, psi).
   struct PhaseRow {
-    T x[2], d, c[kM], w[kM];
+    T x[5], d, c[kM], w[kM];
   };
   struct NoPhaseRow {};
   std::conditional_t<kPhaseRow, PhaseRow, NoPhaseRow> ph_;
@@ -256,17 +261,19 @@ enum class RomWUse : std::uint8_t { fresh, kept_w };
 // docs/rom.md#slope-floor; without it W = I - gamma h J exactly. `carry`
 // keeps the fixed-point rounding remainders from step to step
 // (integrate/increment.hpp); floating point ignores it.
-template <RomWUse Use, class T, std::uint32_t F>
-void rom_step_implicit_with(Method m, const CvtRom<T, F>& sys, typename CvtRom<T, F>::State& x, const T& h,
-                            const typename CvtRom<T, F>::Contact& c, bool w_slope_floor,
-                            typename CvtRom<T, F>::Jacobian& J, RomWSolver<T, F>& w,
-                            CarryOf<CvtRom<T, F>>* carry = nullptr) {
+template <class Plant>
+using RomWSolverOf = RomWSolver<typename Plant::Scalar, Plant::kFeatures>;
+
+template <RomWUse Use, class Plant>
+void rom_step_implicit_with(Method m, const Plant& sys, typename Plant::State& x, const typename Plant::Scalar& h,
+                            const typename Plant::Contact& c, bool w_slope_floor, typename Plant::Jacobian& J,
+                            RomWSolverOf<Plant>& w, CarryOf<Plant>* carry = nullptr) {
   // Only the entries the W solver reads are written.
   if constexpr (Use == RomWUse::fresh) sys.jacobian_entries(x, c, J, w_slope_floor);
-  typename CvtRom<T, F>::State f;
+  typename Plant::State f;
   sys.derivative(x, c, f);
   if constexpr (Use == RomWUse::kept_w) {
-    FactoredW<RomWSolver<T, F>> kept(w);
+    FactoredW<RomWSolverOf<Plant>> kept(w);
     if (m == Method::linear_implicit_euler) step_linear_implicit_euler_with(sys, x, h, J, kept, f, carry);
     else step_ros2_with(sys, x, h, J, kept, f, carry);
   } else {
@@ -277,23 +284,23 @@ void rom_step_implicit_with(Method m, const CvtRom<T, F>& sys, typename CvtRom<T
 
 // The same with a Jacobian and W of its own: the simulator's step
 // (docs/rom.md#cost), which shares the contact with the energy ledger.
-template <class T, std::uint32_t F>
-void rom_step_implicit(Method m, const CvtRom<T, F>& sys, typename CvtRom<T, F>::State& x, const T& h,
-                       const typename CvtRom<T, F>::Contact& c, bool w_slope_floor,
-                       CarryOf<CvtRom<T, F>>* carry = nullptr) {
-  typename CvtRom<T, F>::Jacobian J;
-  RomWSolver<T, F> w;
+template <class Plant>
+void rom_step_implicit(Method m, const Plant& sys, typename Plant::State& x, const typename Plant::Scalar& h,
+                       const typename Plant::Contact& c, bool w_slope_floor, CarryOf<Plant>* carry = nullptr) {
+  typename Plant::Jacobian J;
+  RomWSolverOf<Plant> w;
   rom_step_implicit_with<RomWUse::fresh>(m, sys, x, h, c, w_slope_floor, J, w, carry);
 }
 
 // One step of `m` on the plant: ROS2 and linearly implicit Euler through
 // RomWSolver, the explicit methods through the generic integrators;
 // `w_slope_floor` as for rom_step_implicit (for the implicit methods). No
-// plant instantiates the dense Rosenbrock code: with 64 plant types compiled
-// for the host tools, its Eigen LUs would be most of their compile time.
-template <class T, std::uint32_t F>
-void rom_step(Method m, const CvtRom<T, F>& sys, typename CvtRom<T, F>::State& x, const T& h,
-              bool w_slope_floor = false, CarryOf<CvtRom<T, F>>* carry = nullptr) {
+// plant instantiates the dense Rosenbrock code: with every plant type
+// compiled for the host tools, its Eigen LUs would be most of their compile
+// time.
+template <class Plant>
+void rom_step(Method m, const Plant& sys, typename Plant::State& x, const typename Plant::Scalar& h,
+              bool w_slope_floor = false, CarryOf<Plant>* carry = nullptr) {
   switch (m) {
     case Method::explicit_euler: step_explicit_euler(sys, x, h, carry); return;
     case Method::semi_implicit_euler: step_semi_implicit_euler(sys, x, h); return;

@@ -3,8 +3,8 @@
 // docs/rom.md#tension): what the plant computes once per state from the
 // strands' force difference, the chain speed and the driver sheave's regime,
 // and the formulas it is built from, one function each. The law itself is
-// CvtRom::chain_tension; the plant's other pieces (contact, right-hand side,
-// Jacobian, outputs, ledger) read its result.
+// RomTension::chain (feature/tension.hpp); the plant's other pieces
+// (contact, right-hand side, Jacobian, outputs, ledger) read its result.
 //
 // Fixed point (RomUnits): the tensions are in N like every force; the creep
 // strain's denominator kL + T_s (a few kN) is taken in RomUnits::tension_N,
@@ -29,31 +29,14 @@ struct ChainTension {
   bool floored = false;  // T_s at its floor max(0, -dT)
 };
 
-// The shared contact of a non-wedging plant carries the tension state with
-// the feature and nothing without it: an empty base takes no space, so a plant
-// without the feature copies and computes what it did before.
+// The shared contact carries the tension state with the feature and nothing
+// without it: an empty base takes no space, so a plant without the feature
+// copies and computes what it did before.
 template <class T, bool kTension>
 struct RomContactTension {};
 template <class T>
 struct RomContactTension<T, true> {
   ChainTension<T> tension{};
-};
-
-// The tension feature's set-up constants in the plant's type and units
-// (filled by RomConstants; docs/rom.md#tension): kappa m', 2 kappa m' r2
-// (d T_c / d w2 per v_c), c_F = theta1 / (2 tan beta0) and its inverse,
-// T_max, eta_s, c_F eta_s, eta_w + 1/2, kL and 1 in RomUnits::tension_N, g,
-// fixed sheaves, and the driven speed where kappa m' v_c^2 leaves the
-// fixed-point range. A plant without the feature has an empty base instead:
-// its constants keep their layout, so its code is what it was.
-template <class T, bool kTension>
-struct RomTensionConstants {};
-template <class T>
-struct RomTensionConstants<T, true> {
-  T ten_m{}, ten_two_m_r2{}, ten_cF{}, ten_inv_cF{}, ten_Tmax{}, ten_eta_s{}, ten_cF_eta_s{}, ten_k_ws{};
-  T ten_kL{}, ten_unit{}, ten_g{};
-  bool ten_fixed = false;
-  T ten_w2_max{};
 };
 
 // Centrifugal tension of a chain of m kg per metre running at v_c, m v_c^2

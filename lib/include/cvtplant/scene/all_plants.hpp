@@ -1,14 +1,18 @@
 #pragma once
 // Every plant of every scalar type, for the host tools (the CLI, the analysis
-// toolkit, the SIL bridge): in double and float 33 feature masks, the 16 of
-// the first four features, the 8 with wedging (which needs axial), the 8
-// with tension and any of axial, road load and deformation, and tension with
-// polygon (the link-passing ripple's scene); in q16.16 the 25 without
-// wedging. Their code is compiled once, split
-// over several translation units in lib/src/ so a build compiles them in
-// parallel, and linked from the cvtplant::all_plants library; a caller of
-// AllRomPlants<T>::build compiles none of it. Firmware uses a RomPlantSet of
-// the masks it ships instead (scene/plant_set.hpp).
+// toolkit, the SIL bridge): every feature combination a scene can ask for
+// (rom_feature_conflict), in double and float, and every one without
+// wedging in q16.16. The stateless features road load and deformation are
+// carried by every plant and switched at set-up (CvtRom's run-time bits), so
+// the combinations of the others are the plant types: in double and float
+// the 8 of axial, polygon and tension and the 4 with wedging (which needs
+// axial) with polygon and tension, in q16.16 the 8 without wedging; 32 types
+// for the 128 combinations (docs/rom.md#build-time). Their code is compiled
+// once, split over several translation units in lib/src/ so a build
+// compiles them in parallel, and linked from the cvtplant::all_plants
+// library; a caller of AllRomPlants<T>::build compiles none of it. Firmware
+// uses a RomPlantSet of the masks it ships instead (scene/plant_set.hpp),
+// every bit compiled in.
 #include <cstddef>
 #include <cstdint>
 #include <type_traits>
@@ -19,27 +23,26 @@
 namespace cvt {
 
 namespace all_plants_detail {
+namespace f = rom_feature;
+// The bits every host plant carries and switches at set-up.
+inline constexpr std::uint32_t kRuntime = rom_feature::runtime_capable;
 template <class T>
 constexpr bool kHasWedging = std::is_floating_point<T>::value;
-
 // The parts of the set, each compiled in translation units of its own
 // (lib/src/all_plants_<scalar>_<part>.cpp); the one place their masks are
 // written.
-// The core plant with axial, road load and deformation.
+// The core plant with axial and polygon (road load and deformation at set-up).
 template <class T>
-using LowPlants = RomPlantSet<T, 0, 1, 2, 3, 4, 5, 6, 7>;
-// The same with polygon.
+using Plain = RomPlantSetRt<T, kRuntime, 0, f::axial, f::polygon, f::axial | f::polygon>;
+// The same with the chain's tension state (docs/rom.md#tension).
 template <class T>
-using PolygonPlants = RomPlantSet<T, 8, 9, 10, 11, 12, 13, 14, 15>;
-// Wedging (which needs axial), with any of road load, deformation and
-// polygon; floating point only.
+using Tension = RomPlantSetRt<T, kRuntime, f::tension, f::tension | f::axial, f::tension | f::polygon,
+                              f::tension | f::axial | f::polygon>;
+// The variable-ratio plants (wedging needs axial), with polygon and tension;
+// floating point only (docs/rom.md#wedging, #tension-radial).
 template <class T>
-using WedgingPlants = RomPlantSet<T, 17, 19, 21, 23, 25, 27, 29, 31>;
-// Tension with any of axial, road load and deformation (docs/rom.md#tension),
-// and tension with polygon, for the link-passing ripple's scene
-// (tools/scenes/seed-case1-ripple.toml, docs/rom.md#link-ripple).
-template <class T>
-using TensionPlants = RomPlantSet<T, 32, 33, 34, 35, 36, 37, 38, 39, 40>;
+using Wedging = RomPlantSetRt<T, kRuntime, f::axial | f::wedging, f::axial | f::wedging | f::polygon,
+                              f::axial | f::wedging | f::tension, f::axial | f::wedging | f::polygon | f::tension>;
 
 // The plant set of the masks of several sets.
 template <class... Sets>
@@ -48,15 +51,15 @@ template <class Set>
 struct Joined<Set> {
   using type = Set;
 };
-template <class T, std::uint32_t... A, std::uint32_t... B, class... Rest>
-struct Joined<RomPlantSet<T, A...>, RomPlantSet<T, B...>, Rest...> : Joined<RomPlantSet<T, A..., B...>, Rest...> {};
+template <class T, std::uint32_t R, std::uint32_t... A, std::uint32_t... B, class... Rest>
+struct Joined<RomPlantSetRt<T, R, A...>, RomPlantSetRt<T, R, B...>, Rest...>
+    : Joined<RomPlantSetRt<T, R, A..., B...>, Rest...> {};
 
 // Every mask of scalar T; the storage size and alignment come from this set,
 // the code from lib/src.
 template <class T>
-using Masks = std::conditional_t<kHasWedging<T>,
-                                 typename Joined<LowPlants<T>, PolygonPlants<T>, WedgingPlants<T>, TensionPlants<T>>::type,
-                                 typename Joined<LowPlants<T>, PolygonPlants<T>, TensionPlants<T>>::type>;
+using Masks = std::conditional_t<kHasWedging<T>, typename Joined<Plain<T>, Tension<T>, Wedging<T>>::type,
+                                 typename Joined<Plain<T>, Tension<T>>::type>;
 }  // namespace all_plants_detail
 
 template <class T>

@@ -36,59 +36,70 @@ constexpr std::size_t max_of(std::size_t a, std::size_t b, R... rest) {
 template <class T>
 constexpr const char* missing_plant_reason(std::uint32_t features, bool found) {
   if (found) return nullptr;
-  if ((features & ~rom_feature::known) != 0u) return "unknown feature bit";
-  if ((features & rom_feature::tension) != 0u && (features & rom_feature::wedging) != 0u)
-    return "tension does not combine with wedging";
-  if ((features & rom_feature::wedging) != 0u && (features & rom_feature::axial) == 0u)
-    return "wedging needs the axial feature";
+  if (const char* why = rom_feature_conflict(features)) return why;
   if ((features & rom_feature::wedging) != 0u && !std::is_floating_point<T>::value)
     return "wedging runs in double or float only: there is no fixed-point plant with it";
   return "this program has no plant compiled for this feature set";
 }
 
-template <class T, std::uint32_t... Masks>
-struct RomPlantSet {
+// The plants of the feature masks `Masks`, each also carrying the stateless
+// features `Runtime` switched at set-up (CvtRom's run-time bits; 0 for
+// firmware, which names every bit it ships at compile time): a scene runs on
+// the plant whose mask is its own without the Runtime bits.
+template <class T, std::uint32_t Runtime, std::uint32_t... Masks>
+struct RomPlantSetRt {
   static_assert(sizeof...(Masks) > 0, "a plant set needs at least one feature mask");
+  static_assert((((Masks & Runtime) == 0u) && ...), "a mask names no run-time bit");
   using Scalar = T;
-  static constexpr std::size_t kSize = plant_set_detail::max_of(sizeof(ErasedRomSimulator<T, Masks>)...);
-  static constexpr std::size_t kAlign = plant_set_detail::max_of(alignof(ErasedRomSimulator<T, Masks>)...);
+  static constexpr std::uint32_t kRuntime = Runtime;
+  static constexpr std::size_t kSize = plant_set_detail::max_of(sizeof(ErasedRomSimulator<T, Masks, Runtime>)...);
+  static constexpr std::size_t kAlign = plant_set_detail::max_of(alignof(ErasedRomSimulator<T, Masks, Runtime>)...);
 
   // Replacing a plant in its storage needs no destructor call.
-  static_assert((std::is_trivially_destructible<ErasedRomSimulator<T, Masks>>::value && ...),
+  static_assert((std::is_trivially_destructible<ErasedRomSimulator<T, Masks, Runtime>>::value && ...),
                 "plants are built in place and never destroyed");
 
-  static constexpr bool contains(std::uint32_t features) { return ((features == Masks) || ...); }
+  static constexpr bool contains(std::uint32_t features) { return (((features & ~Runtime) == Masks) || ...); }
 
   // Constructs the plant of `features` in `storage` (kSize bytes aligned to
   // kAlign); nullptr if the set has none.
   static IRomSimulator<T>* build(std::uint32_t features, const RomParams& p, const RomSimConfig& c, void* storage) {
     IRomSimulator<T>* sim = nullptr;
-    (void)((features == Masks ? (sim = ::new (storage) ErasedRomSimulator<T, Masks>(p, c), true) : false) || ...);
+    const std::uint32_t compiled = features & ~Runtime;
+    (void)((compiled == Masks ? (sim = ::new (storage) ErasedRomSimulator<T, Masks, Runtime>(p, c, features), true)
+                              : false) ||
+           ...);
     return sim;
   }
 
   // Calls f(plant) with `sim`, a plant build() made, as its concrete
-  // ErasedRomSimulator<T, F> (F = sim.features()): what copies a whole
+  // ErasedRomSimulator<T, F, Runtime> (F = sim.features() without the
+  // run-time bits): what copies a whole
   // simulator, its state, cached contact, ledger, actuators, fault and frame
   // count, for a rollback that continues bit-identically (the FMU's state,
   // fmu/). False, without calling f, if the set has no plant of its features.
   template <class Sim, class Fn>
   static bool visit(Sim& sim, Fn&& f) {
     static_assert(std::is_same<std::remove_const_t<Sim>, IRomSimulator<T>>::value, "a plant of this set");
-    const std::uint32_t features = sim.features();
-    return ((features == Masks ? (f(concrete<Masks>(sim)), true) : false) || ...);
+    const std::uint32_t compiled = sim.features() & ~Runtime;
+    return ((compiled == Masks ? (f(concrete<Masks>(sim)), true) : false) || ...);
   }
 
  private:
   template <std::uint32_t F>
-  static ErasedRomSimulator<T, F>& concrete(IRomSimulator<T>& sim) {
-    return static_cast<ErasedRomSimulator<T, F>&>(sim);
+  static ErasedRomSimulator<T, F, Runtime>& concrete(IRomSimulator<T>& sim) {
+    return static_cast<ErasedRomSimulator<T, F, Runtime>&>(sim);
   }
   template <std::uint32_t F>
-  static const ErasedRomSimulator<T, F>& concrete(const IRomSimulator<T>& sim) {
-    return static_cast<const ErasedRomSimulator<T, F>&>(sim);
+  static const ErasedRomSimulator<T, F, Runtime>& concrete(const IRomSimulator<T>& sim) {
+    return static_cast<const ErasedRomSimulator<T, F, Runtime>&>(sim);
   }
 };
+
+// A set of plants whose every feature is compiled in, as firmware ships them
+// (RomPlantSet<float, rom_feature::axial>).
+template <class T, std::uint32_t... Masks>
+using RomPlantSet = RomPlantSetRt<T, 0u, Masks...>;
 
 // Whether a fixed-point plant can take the scene's declared values: every
 // input profile's declared range (profile_bound) and every initial value must

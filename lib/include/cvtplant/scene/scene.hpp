@@ -314,9 +314,6 @@ inline SceneIssue validate_scene(const Scene& s) {
   }
   if (s.features & rom_feature::tension) {
     // docs/rom.md#tension
-    if (s.features & rom_feature::wedging)
-      return bad("features", "tension does not combine with wedging (the chain's radial position would set the wrap "
-                             "tension; not modelled)");
     if (!(p.beta0_rad >= 0.01))
       return bad("beta0_deg", "tension needs beta0 >= 0.573 deg: a wrap's axial force is theta1 (T - T_c) / (2 tan beta0)");
     if (!(fin(p.chain_mass_kg_m) && p.chain_mass_kg_m >= 0 && p.chain_mass_kg_m <= 100))
@@ -360,7 +357,8 @@ inline SceneIssue validate_scene(const Scene& s) {
   // rate, w1 or with tension bounded by the chain speed (docs/rom.md#link-ripple;
   // the watchdog faults step-unresolved when it gets faster).
   if ((s.features & rom_feature::polygon) &&
-      rom_polygon_phase_rate_bound_rad_s(p, x.omega1_rad_s, x.omega2_rad_s, (s.features & rom_feature::tension) != 0u) >
+      rom_polygon_phase_rate_bound_rad_s(p, x.omega1_rad_s, x.omega2_rad_s, (s.features & rom_feature::tension) != 0u,
+                                         (s.features & rom_feature::wedging) != 0u ? x.radius_offset_m : 0.0) >
           rom_polygon_resolved_speed_rad_s(p, s.frame_s / s.substeps))
     return bad("substeps", "polygon: the step does not resolve the link passing at the starting speed "
                            "(8 steps per link needed): raise substeps");

@@ -9,7 +9,7 @@
 
 #include "cvtplant/can/messages.hpp"
 #include "cvtplant/math/detmath.hpp"
-#include "cvtplant/plant/rom_constants.hpp"
+#include "cvtplant/plant/cvt_rom.hpp"
 #include "cvtplant/plant/rom_formulas.hpp"
 #include "cvtplant/scene/all_plants.hpp"
 #include "cvtplant/scene/builtin_scenes.hpp"
@@ -48,11 +48,11 @@ inline PublishedParams published_params(const Scene& s) {
   q.radius_driver_m = p.r1_m;
   q.clamp_max_N = p.clamp_max_N;
   if (q.variable_ratio) {
-    const RomConstants<double, rom_feature::axial | rom_feature::wedging> c(p);
+    const CvtRom<double, rom_feature::axial | rom_feature::wedging> rom(p);
     const double rho[3] = {p.radial_travel_m, 0.0, -p.radial_travel_m};
     for (int i = 0; i < 3; ++i) {
-      q.ratio[i] = (p.r2_m + driven_radius_change(rho[i], c.a1, c.a2, c.a3)) / (p.r1_m + rho[i]);
-      q.thrust_ratio[i] = -(c.a1 + rho[i] * (2.0 * c.a2 + rho[i] * 3.0 * c.a3));
+      q.ratio[i] = (p.r2_m + rom.radial().driven_radius_change(rho[i])) / (p.r1_m + rho[i]);
+      q.thrust_ratio[i] = rom.ratio_slope(rho[i]);
     }
   }
   return q;

@@ -1,6 +1,0 @@
-// AllRomPlants<q16_16>, part polygon (all_plants_parts.hpp).
-#include "all_plants_parts.hpp"
-
-namespace cvt::all_plants_detail {
-template IRomSimulator<q16_16>* build_polygon<q16_16>(std::uint32_t, const RomParams&, const RomSimConfig&, void*);
-}  // namespace cvt::all_plants_detail

@@ -1,6 +1,0 @@
-// AllRomPlants<float>, part low (all_plants_parts.hpp).
-#include "all_plants_parts.hpp"
-
-namespace cvt::all_plants_detail {
-template IRomSimulator<float>* build_low<float>(std::uint32_t, const RomParams&, const RomSimConfig&, void*);
-}  // namespace cvt::all_plants_detail

@@ -1,0 +1,6 @@
+// AllRomPlants<float>, part plain (all_plants_parts.hpp).
+#include "all_plants_parts.hpp"
+
+namespace cvt::all_plants_detail {
+template IRomSimulator<float>* build_plain<float>(std::uint32_t, const RomParams&, const RomSimConfig&, void*);
+}  // namespace cvt::all_plants_detail
