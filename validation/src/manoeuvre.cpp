@@ -102,7 +102,11 @@ void check_manoeuvre(const Manoeuvre& m) {
 cvt::mbd::MbdParams config_params(const ReferenceConfig& c) {
   cvt::mbd::MbdParams p =
       c.set == cvt::mbd::ParameterSet::production ? cvt::mbd::production_set() : cvt::mbd::seed_case(1);
-  for (const auto& [name, value] : c.overrides) {
+  for (const auto& override : c.overrides) {
+    // Named, not a structured binding: C++17 does not let a lambda capture
+    // one (clang refuses it).
+    const std::string& name = override.first;
+    const double value = override.second;
     bool found = false;
     cvt::mbd::visit_mbd_params(p, [&](const cvt::ParamField& f, auto& x) {
       const std::string full = f.group[0] != '\0' ? std::string(f.group) + "." + f.name : std::string(f.name);
