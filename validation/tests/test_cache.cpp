@@ -52,6 +52,22 @@ int field_count() {
   return n;
 }
 
+// Seed case 1 with a short settle: the runs below need a valid entry, not
+// a settled chain.
+cvt::mbd::MbdParams short_seed_case() {
+  cvt::mbd::MbdParams p = cvt::mbd::seed_case(1);
+  p.settle_s = 0.02;
+  return p;
+}
+
+// A run of t_end_s sampled every millisecond.
+cvt::mbd::RunOptions sampled_run(double t_end_s) {
+  cvt::mbd::RunOptions r;
+  r.t_end_s = t_end_s;
+  r.sample_s = 1e-3;
+  return r;
+}
+
 std::string scratch_dir(const char* name) {
   const std::string d = (std::filesystem::temp_directory_path() / ("cvt_validation_" + std::string(name))).string();
   std::filesystem::remove_all(d);
@@ -104,11 +120,8 @@ TEST_SUITE("cache") {
 
   TEST_CASE("a run is stored, read back bit for bit, and rerun when its files are damaged") {
     const std::string dir = scratch_dir("cache");
-    cvt::mbd::MbdParams p = cvt::mbd::seed_case(1);
-    p.settle_s = 0.02;
-    cvt::mbd::RunOptions r;
-    r.t_end_s = 0.02;
-    r.sample_s = 1e-3;
+    cvt::mbd::MbdParams p = short_seed_case();
+    cvt::mbd::RunOptions r = sampled_run(0.02);
     const ReferenceRun first = reference_run(p, r, dir);
     CHECK_FALSE(first.from_cache);
     REQUIRE(first.series.size() == 21u);
@@ -136,11 +149,8 @@ TEST_SUITE("cache") {
 
   TEST_CASE("an entry is checked: each kind of damage is found and named, and the run is made again") {
     const std::string dir = scratch_dir("cache_checks");
-    cvt::mbd::MbdParams p = cvt::mbd::seed_case(1);
-    p.settle_s = 0.02;
-    cvt::mbd::RunOptions r;
-    r.t_end_s = 0.01;
-    r.sample_s = 1e-3;
+    cvt::mbd::MbdParams p = short_seed_case();
+    cvt::mbd::RunOptions r = sampled_run(0.01);
     const ReferenceRun made = reference_run(p, r, dir);
     REQUIRE(made.series.size() == 11u);
     CHECK(made.cache_problem.empty());
@@ -250,11 +260,8 @@ TEST_SUITE("cache") {
 
   TEST_CASE("an entry has fifteen columns; the slips and the geometric ratio may be nan, nothing else") {
     const std::string dir = scratch_dir("cache_columns");
-    cvt::mbd::MbdParams p = cvt::mbd::seed_case(1);
-    p.settle_s = 0.02;
-    cvt::mbd::RunOptions r;
-    r.t_end_s = 0.005;
-    r.sample_s = 1e-3;
+    cvt::mbd::MbdParams p = short_seed_case();
+    cvt::mbd::RunOptions r = sampled_run(0.005);
     const ReferenceRun made = reference_run(p, r, dir);
     const std::string key = reference_key(p, r);
     std::string key_file, csv_file;
@@ -288,11 +295,8 @@ TEST_SUITE("cache") {
 
   TEST_CASE("cached_run and store_run: a run under any key, its failure kept, a damaged entry named") {
     const std::string dir = scratch_dir("cache_store");
-    cvt::mbd::MbdParams p = cvt::mbd::seed_case(1);
-    p.settle_s = 0.02;
-    cvt::mbd::RunOptions r;
-    r.t_end_s = 0.005;
-    r.sample_s = 1e-3;
+    cvt::mbd::MbdParams p = short_seed_case();
+    cvt::mbd::RunOptions r = sampled_run(0.005);
     const std::string ref_dir = scratch_dir("cache_store_ref");
     const ReferenceRun run = reference_run(p, r, ref_dir);
     std::filesystem::remove_all(ref_dir);
@@ -339,8 +343,7 @@ TEST_SUITE("cache") {
 
   TEST_CASE("a run that its step cap ended is used but not stored") {
     const std::string dir = scratch_dir("cache_cap");
-    cvt::mbd::MbdParams p = cvt::mbd::seed_case(1);
-    p.settle_s = 0.02;
+    cvt::mbd::MbdParams p = short_seed_case();
     cvt::mbd::RunOptions r;
     r.t_end_s = 0.02;
     r.max_steps = 200;  // about 500 are needed
@@ -353,8 +356,7 @@ TEST_SUITE("cache") {
   }
 
   TEST_CASE("a cache directory that cannot be written is bad input") {
-    cvt::mbd::MbdParams p = cvt::mbd::seed_case(1);
-    p.settle_s = 0.02;
+    cvt::mbd::MbdParams p = short_seed_case();
     cvt::mbd::RunOptions r;
     r.t_end_s = 0.005;
     CHECK_THROWS_AS(reference_run(p, r, "/proc/no/such/dir"), InputError);
