@@ -250,8 +250,7 @@ Maps make_maps(const cvt::Scene& plant, const ReferenceConfig& c, const std::str
       out.shift.push_back(cell);
     }
   for (const double clamp : kTractionClamps_N) {
-    const Manoeuvre m = traction_manoeuvre(clamp);
-    const std::size_t i = at.at(m.name);
+    const std::size_t i = at.at(traction_manoeuvre(clamp).name);
     const Series& r = refs[i].series;
     const Series p = plant_of(i, nullptr);
     const double r1 = r1_of(kTractionRatio);
@@ -283,8 +282,7 @@ Maps make_maps(const cvt::Scene& plant, const ReferenceConfig& c, const std::str
     }
   }
   for (const double torque : kOnsetTorques_Nm) {
-    const Manoeuvre m = onset_manoeuvre(torque);
-    const std::size_t i = at.at(m.name);
+    const std::size_t i = at.at(onset_manoeuvre(torque).name);
     const Series& r = refs[i].series;
     const Series p = plant_of(i, nullptr);
     OnsetPoint op;
@@ -299,48 +297,45 @@ Maps make_maps(const cvt::Scene& plant, const ReferenceConfig& c, const std::str
 
 namespace {
 
+// One map's table dir/name: the header line, then write_row(file, row) for each row.
+template <class Rows, class WriteRow>
+void write_csv(const std::string& dir, const char* name, const char* header, const Rows& rows, WriteRow write_row,
+               std::vector<std::string>& paths) {
+  const std::string path = dir + "/" + name;
+  auto f = cvt::analysis::open_text_file(path);
+  f << header;
+  for (const auto& row : rows) write_row(f, row);
+  paths.push_back(path);
+}
+
 void write_csvs(const Maps& m, const std::string& dir, std::vector<std::string>& paths) {
-  {
-    const std::string path = dir + "/thrust-ratio.csv";
-    auto f = cvt::analysis::open_text_file(path);
-    f << "ratio,torque_Nm,clamp2_N,torque_ratio,kappa_ref,kappa_plant,error,ratio_ref,ratio_plant,drift_ref_per_s\n";
-    for (const auto& c : m.thrust)
-      f << c.ratio << ',' << c.torque_Nm << ',' << c.clamp2_N << ',' << c.torque_ratio << ',' << c.kappa_ref << ','
-        << c.kappa_plant << ',' << c.error() << ',' << c.ratio_ref << ',' << c.ratio_plant << ','
-        << c.drift_ref_per_s << '\n';
-    paths.push_back(path);
-  }
-  {
-    const std::string path = dir + "/shift-rate.csv";
-    auto f = cvt::analysis::open_text_file(path);
-    f << "omega1_rad_s,ratio,torque_Nm,clamp2_N,delta_ln_F1_F2,rate_ref_per_s,rate_plant_per_s,slope_ref,slope_plant,"
-         "cmm_coefficient_ref,cmm_coefficient_plant,r2_ref,r2_plant\n";
-    for (const auto& c : m.shift)
-      for (std::size_t i = 0; i < c.delta.size(); ++i)
-        f << c.omega1_rad_s << ',' << c.ratio << ',' << c.torque_Nm << ',' << c.clamp2_N << ',' << c.delta[i] << ','
-          << c.rate_ref[i] << ',' << c.rate_plant[i] << ',' << c.slope_ref << ',' << c.slope_plant << ','
-          << c.slope_ref / c.omega1_rad_s << ',' << c.slope_plant / c.omega1_rad_s << ',' << c.r2_ref << ','
-          << c.r2_plant << '\n';
-    paths.push_back(path);
-  }
-  {
-    const std::string path = dir + "/traction.csv";
-    auto f = cvt::analysis::open_text_file(path);
-    f << "clamp2_N,torque_cmd_Nm,torque_ratio,torque_ref_Nm,slip_ref,torque_plant_Nm,slip_plant\n";
-    for (const auto& p : m.traction)
-      f << p.clamp2_N << ',' << p.torque_cmd_Nm << ',' << p.torque_ratio << ',' << p.torque_ref_Nm << ','
-        << p.slip_ref << ',' << p.torque_plant_Nm << ',' << p.slip_plant << '\n';
-    paths.push_back(path);
-  }
-  {
-    const std::string path = dir + "/gross-slip-onset.csv";
-    auto f = cvt::analysis::open_text_file(path);
-    f << "torque_Nm,clamp_ref_N,clamp_plant_N,clamp_closed_form_N,error\n";
-    for (const auto& o : m.onset)
-      f << o.torque_Nm << ',' << o.clamp_ref_N << ',' << o.clamp_plant_N << ',' << o.clamp_closed_N << ','
-        << o.error() << '\n';
-    paths.push_back(path);
-  }
+  write_csv(dir, "thrust-ratio.csv",
+            "ratio,torque_Nm,clamp2_N,torque_ratio,kappa_ref,kappa_plant,error,ratio_ref,ratio_plant,drift_ref_per_s\n",
+            m.thrust, [](auto& f, const auto& c) {
+              f << c.ratio << ',' << c.torque_Nm << ',' << c.clamp2_N << ',' << c.torque_ratio << ',' << c.kappa_ref
+                << ',' << c.kappa_plant << ',' << c.error() << ',' << c.ratio_ref << ',' << c.ratio_plant << ','
+                << c.drift_ref_per_s << '\n';
+            }, paths);
+  write_csv(dir, "shift-rate.csv",
+            "omega1_rad_s,ratio,torque_Nm,clamp2_N,delta_ln_F1_F2,rate_ref_per_s,rate_plant_per_s,slope_ref,slope_plant,"
+            "cmm_coefficient_ref,cmm_coefficient_plant,r2_ref,r2_plant\n",
+            m.shift, [](auto& f, const auto& c) {
+              for (std::size_t i = 0; i < c.delta.size(); ++i)
+                f << c.omega1_rad_s << ',' << c.ratio << ',' << c.torque_Nm << ',' << c.clamp2_N << ',' << c.delta[i]
+                  << ',' << c.rate_ref[i] << ',' << c.rate_plant[i] << ',' << c.slope_ref << ',' << c.slope_plant << ','
+                  << c.slope_ref / c.omega1_rad_s << ',' << c.slope_plant / c.omega1_rad_s << ',' << c.r2_ref << ','
+                  << c.r2_plant << '\n';
+            }, paths);
+  write_csv(dir, "traction.csv", "clamp2_N,torque_cmd_Nm,torque_ratio,torque_ref_Nm,slip_ref,torque_plant_Nm,slip_plant\n",
+            m.traction, [](auto& f, const auto& p) {
+              f << p.clamp2_N << ',' << p.torque_cmd_Nm << ',' << p.torque_ratio << ',' << p.torque_ref_Nm << ','
+                << p.slip_ref << ',' << p.torque_plant_Nm << ',' << p.slip_plant << '\n';
+            }, paths);
+  write_csv(dir, "gross-slip-onset.csv", "torque_Nm,clamp_ref_N,clamp_plant_N,clamp_closed_form_N,error\n", m.onset,
+            [](auto& f, const auto& o) {
+              f << o.torque_Nm << ',' << o.clamp_ref_N << ',' << o.clamp_plant_N << ',' << o.clamp_closed_N << ','
+                << o.error() << '\n';
+            }, paths);
 }
 
 // One gnuplot script per map next to its CSV.
