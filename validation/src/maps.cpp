@@ -350,55 +350,52 @@ void draw(const std::string& dir, const std::string& name, const std::string& bo
   paths.push_back(png);
 }
 
+// A gnuplot plot command grown one group of curves at a time: `add` formats
+// a group with printf, its first %s the separator from the group before.
+struct PlotCommand {
+  std::string text;  // the title, labels and "plot "; then the groups
+  int groups = 0;
+  int colour() const { return groups + 1; }  // the next group's line colour
+  template <class... A>
+  void add(const char* f, A... a) {
+    const char* sep = groups++ > 0 ? ", " : "";
+    std::string b(static_cast<std::size_t>(std::snprintf(nullptr, 0, f, sep, a...)), '\0');
+    std::snprintf(b.data(), b.size() + 1, f, sep, a...);
+    text += b;
+  }
+};
+
 void write_figures(const Maps&, const std::string& dir, std::vector<std::string>& paths) {
-  std::string body = "set title 'Thrust-ratio map: F1/F2 that holds the ratio, reference (points) and plant "
-                     "(lines)'\nset xlabel 'geometric ratio r2/r1 [-]'\nset ylabel 'kappa = F1/F2 [-]'\nplot ";
-  int k = 0;
-  for (const double torque : kMapTorques_Nm) {
-    char b[512];
-    std::snprintf(b, sizeof b,
-                  "%s'%s/thrust-ratio.csv' skip 1 using ($2==%g?$1:1/0):5 with points pt 7 lc %d title 'reference %g N m', "
-                  "'%s/thrust-ratio.csv' skip 1 using ($2==%g?$1:1/0):6 with lines lw 2 lc %d title 'plant %g N m'",
-                  k > 0 ? ", " : "", dir.c_str(), torque, k + 1, torque, dir.c_str(), torque, k + 1, torque);
-    body += b;
-    ++k;
-  }
-  draw(dir, "thrust-ratio", body + "\n", paths);
-  body = "set title 'Shift rate after a step of ln(F1/F2) from the hold: reference (points), plant (lines)'\n"
-         "set xlabel 'delta ln(F1/F2) [-]'\nset ylabel 'd(r2/r1)/dt per primary speed [1/rad]'\nplot ";
-  k = 0;
+  PlotCommand thrust{"set title 'Thrust-ratio map: F1/F2 that holds the ratio, reference (points) and plant "
+                     "(lines)'\nset xlabel 'geometric ratio r2/r1 [-]'\nset ylabel 'kappa = F1/F2 [-]'\nplot "};
+  for (const double torque : kMapTorques_Nm)
+    thrust.add("%s'%s/thrust-ratio.csv' skip 1 using ($2==%g?$1:1/0):5 with points pt 7 lc %d title 'reference %g N m', "
+               "'%s/thrust-ratio.csv' skip 1 using ($2==%g?$1:1/0):6 with lines lw 2 lc %d title 'plant %g N m'",
+               dir.c_str(), torque, thrust.colour(), torque, dir.c_str(), torque, thrust.colour(), torque);
+  draw(dir, "thrust-ratio", thrust.text + "\n", paths);
+  PlotCommand shift{"set title 'Shift rate after a step of ln(F1/F2) from the hold: reference (points), plant (lines)'\n"
+                    "set xlabel 'delta ln(F1/F2) [-]'\nset ylabel 'd(r2/r1)/dt per primary speed [1/rad]'\nplot "};
   for (const double omega1 : kShiftOmega1_rad_s)
-    for (const double ratio : kShiftRatios) {
-      char b[640];
-      std::snprintf(b, sizeof b,
-                    "%s'%s/shift-rate.csv' skip 1 using (($1==%g&&$2==%g)?$5:1/0):($6/$1) with linespoints dt 3 pt 7 lc %d "
-                    "title 'ref. %g rad/s, %g', '%s/shift-rate.csv' skip 1 using (($1==%g&&$2==%g)?$5:1/0):($7/$1) with "
-                    "lines lw 2 lc %d title 'plant %g rad/s, %g'",
-                    k > 0 ? ", " : "", dir.c_str(), omega1, ratio, k + 1, omega1, ratio, dir.c_str(), omega1, ratio,
-                    k + 1, omega1, ratio);
-      body += b;
-      ++k;
-    }
-  draw(dir, "shift-rate", body + "\n", paths);
-  body = "set title 'Traction: transmitted torque against the driver slip, reference (points), plant (lines)'\n"
-         "set xlabel 'driver slip (v1 - v_chain)/v1 [%]'\nset ylabel 'torque on the driver [N m]'\nplot ";
-  k = 0;
-  for (const double clamp : kTractionClamps_N) {
-    char b[512];
-    std::snprintf(b, sizeof b,
-                  "%s'%s/traction.csv' skip 1 using ($1==%g?100*$5:1/0):4 with linespoints dt 3 pt 7 lc %d title 'ref. %g kN', "
-                  "'%s/traction.csv' skip 1 using ($1==%g?100*$7:1/0):6 with linespoints lw 2 pt 4 lc %d title 'plant %g kN'",
-                  k > 0 ? ", " : "", dir.c_str(), clamp, k + 1, clamp / 1000, dir.c_str(), clamp, k + 1, clamp / 1000);
-    body += b;
-    ++k;
-  }
-  draw(dir, "traction", body + "\n", paths);
-  body = "set title 'Clamping at the onset of gross slip'\nset xlabel 'input torque [N m]'\n"
+    for (const double ratio : kShiftRatios)
+      shift.add("%s'%s/shift-rate.csv' skip 1 using (($1==%g&&$2==%g)?$5:1/0):($6/$1) with linespoints dt 3 pt 7 lc %d "
+                "title 'ref. %g rad/s, %g', '%s/shift-rate.csv' skip 1 using (($1==%g&&$2==%g)?$5:1/0):($7/$1) with "
+                "lines lw 2 lc %d title 'plant %g rad/s, %g'",
+                dir.c_str(), omega1, ratio, shift.colour(), omega1, ratio, dir.c_str(), omega1, ratio, shift.colour(),
+                omega1, ratio);
+  draw(dir, "shift-rate", shift.text + "\n", paths);
+  PlotCommand traction{"set title 'Traction: transmitted torque against the driver slip, reference (points), plant (lines)'\n"
+                       "set xlabel 'driver slip (v1 - v_chain)/v1 [%]'\nset ylabel 'torque on the driver [N m]'\nplot "};
+  for (const double clamp : kTractionClamps_N)
+    traction.add("%s'%s/traction.csv' skip 1 using ($1==%g?100*$5:1/0):4 with linespoints dt 3 pt 7 lc %d title 'ref. %g kN', "
+                 "'%s/traction.csv' skip 1 using ($1==%g?100*$7:1/0):6 with linespoints lw 2 pt 4 lc %d title 'plant %g kN'",
+                 dir.c_str(), clamp, traction.colour(), clamp / 1000, dir.c_str(), clamp, traction.colour(), clamp / 1000);
+  draw(dir, "traction", traction.text + "\n", paths);
+  const std::string onset = "set title 'Clamping at the onset of gross slip'\nset xlabel 'input torque [N m]'\n"
          "set ylabel 'driven clamping at onset [kN]'\nplot '" + dir +
          "/gross-slip-onset.csv' skip 1 using 1:($2/1000) with linespoints pt 7 lw 1 title 'reference', '" + dir +
          "/gross-slip-onset.csv' skip 1 using 1:($3/1000) with linespoints pt 4 lw 2 title 'plant', '" + dir +
          "/gross-slip-onset.csv' skip 1 using 1:($4/1000) with lines dt 2 title 'closed form, mu0'\n";
-  draw(dir, "gross-slip-onset", body, paths);
+  draw(dir, "gross-slip-onset", onset, paths);
 }
 
 }  // namespace
