@@ -73,12 +73,7 @@ class RomTension {
 
 template <class Cfg>
 class RomTension<Cfg, true> {
-  using T = typename Cfg::Scalar;
-  using L = typename Cfg::Layout;
-  using U = typename Cfg::U;
-  using State = typename Cfg::State;
-  template <class S>
-  using Vec = typename Cfg::template Vec<S>;
+  CVT_ROM_FEATURE_TYPES(Cfg);
 
  public:
   using Cache = RomContactTension<T, true>;
