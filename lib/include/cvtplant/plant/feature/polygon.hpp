@@ -29,9 +29,7 @@ struct RomRippleCache<T, true> {
 
 template <class Cfg, bool kOn = Cfg::kPolygon>
 class RomPolygon {
-  using T = typename Cfg::Scalar;
-  template <class S>
-  using Vec = typename Cfg::template Vec<S>;
+  CVT_ROM_FEATURE_TYPES(Cfg);
 
  public:
   using Cache = RomRippleCache<T, false>;

@@ -35,9 +35,7 @@ struct Strands {
 // is delta and the strands' stretch the lumps' displacement.
 template <class Cfg, bool kOn = Cfg::kRadial>
 class RomRadial {
-  using T = typename Cfg::Scalar;
-  template <class S>
-  using Vec = typename Cfg::template Vec<S>;
+  CVT_ROM_FEATURE_TYPES(Cfg);
 
  public:
   RomRadial(const RomParams&, const double*) {}
