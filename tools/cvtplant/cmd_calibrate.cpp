@@ -1,5 +1,6 @@
 // `cvtplant calibrate`: the plant's lumped parameters fitted to multibody
-// reference runs (docs/validation.md#calibration). The fit is the validation
+// reference runs (docs/validation.md#calibration) or to a test rig's
+// measured logs (docs/validation.md#measured-csv). The fit is the validation
 // module's (validation/include/cvtplant/validation/calibration.hpp); this
 // file parses the options, loads the scenes and prints.
 #include <cmath>
@@ -38,6 +39,8 @@ struct Options {
   int every = 10;
   int max_evals = 400;
   bool json = false;
+  std::vector<std::string> measured;  // test rig logs to fit on instead of reference runs
+  double piston_area1_m2 = 0, piston_area2_m2 = 0;  // instead of the logs' own
 };
 
 std::vector<std::string> split(const std::string& s) {
@@ -72,12 +75,17 @@ std::string shell_word(const std::string& a) {
 // The command that reproduces a fit (the parameter file's header).
 std::string command_line(const Options& o) {
   std::ostringstream s;
-  s << "cvtplant calibrate --scene " << shell_word(o.scenes) << " --fit " << shell_word(o.fit);
+  s << "cvtplant calibrate";
+  for (const auto& m : o.measured) s << " --measured " << shell_word(m);
+  s << " --scene " << shell_word(o.scenes) << " --fit " << shell_word(o.fit);
   if (!o.start.empty()) s << " --start " << shell_word(o.start);
+  if (o.piston_area1_m2 > 0) s << " --piston-area1 " << exact_number(o.piston_area1_m2);
+  if (o.piston_area2_m2 > 0) s << " --piston-area2 " << exact_number(o.piston_area2_m2);
   if (!o.ref.set.empty()) s << " --set " << o.ref.set;
   if (o.ref.sheaves != "scene") s << " --sheaves " << o.ref.sheaves;
   if (o.ref.t_end_s > 0) s << " --t-end " << exact_number(o.ref.t_end_s);
-  s << " --rtol " << exact_number(o.ref.rtol) << " --every " << o.every << " --max-evals " << o.max_evals;
+  if (o.measured.empty()) s << " --rtol " << exact_number(o.ref.rtol);
+  s << " --every " << o.every << " --max-evals " << o.max_evals;
   if (!o.out.empty()) s << " --out " << shell_word(o.out);
   if (!o.header.empty()) s << " --header " << shell_word(o.header);
   if (o.function != "apply") s << " --function " << o.function;
@@ -89,7 +97,8 @@ nlohmann::json to_json(const val::CalibrationResult& r, const std::vector<std::s
   nlohmann::json j;
   j["subcommand"] = "calibrate";
   j["scenes"] = names;
-  j["sheaves"] = o.ref.sheaves;
+  if (!o.measured.empty()) j["measured"] = o.measured;
+  if (o.measured.empty()) j["sheaves"] = o.ref.sheaves;
   j["optimiser"] = "Eigen LevenbergMarquardt (forward-difference Jacobian)";
   j["status"] = r.status;
   j["plant_evaluations"] = r.evaluations;
@@ -115,16 +124,17 @@ nlohmann::json to_json(const val::CalibrationResult& r, const std::vector<std::s
   for (const auto& c : r.cases) {
     nlohmann::json e;
     e["scene"] = c.scene;
-    for (int q = 0; q < val::kFitQuantityCount; ++q)
-      e[val::kFitQuantities[q].name] = {{"rel_rms_start", c.rel_rms_start[q]}, {"rel_rms_end", c.rel_rms_end[q]}};
+    if (c.measured) e["measured"] = true;
+    for (std::size_t q = 0; q < c.quantities.size(); ++q)
+      e[c.quantities[q]] = {{"rel_rms_start", c.rel_rms_start[q]}, {"rel_rms_end", c.rel_rms_end[q]}};
     cases.push_back(e);
   }
   j["cases"] = cases;
   return j;
 }
 
-void print_text(const val::CalibrationResult& r, const Options& o) {
-  std::printf("Calibration on %s: %ld plant runs, %d residuals, rms residual %.4g -> %.4g\n", o.scenes.c_str(),
+void print_text(const val::CalibrationResult& r, const Options& o, const std::string& fitted_on) {
+  std::printf("Calibration on %s: %ld plant runs, %d residuals, rms residual %.4g -> %.4g\n", fitted_on.c_str(),
               r.evaluations, r.residuals, r.rms_residual_start(), r.rms_residual_end());
   std::printf("| parameter | start | fitted | 1 sigma |\n|---|---|---|---|\n");
   for (const auto& p : r.params) {
@@ -134,11 +144,78 @@ void print_text(const val::CalibrationResult& r, const Options& o) {
     else
       std::printf("not identifiable |\n");
   }
-  std::printf("\n| scene | quantity | relative RMS error, start | after the fit |\n|---|---|---|---|\n");
+  std::printf("\n| %s | quantity | relative RMS error, start | after the fit |\n|---|---|---|---|\n",
+              o.measured.empty() ? "scene" : "log");
   for (const auto& c : r.cases)
-    for (int q = 0; q < val::kFitQuantityCount; ++q)
-      std::printf("| %s | %s | %.2f %% | %.2f %% |\n", c.scene.c_str(), val::kFitQuantities[q].name,
-                  100.0 * c.rel_rms_start[q], 100.0 * c.rel_rms_end[q]);
+    for (std::size_t q = 0; q < c.quantities.size(); ++q)
+      std::printf("| %s | %s | %.2f %% | %.2f %% |\n", c.scene.c_str(), c.quantities[q], 100.0 * c.rel_rms_start[q],
+                  100.0 * c.rel_rms_end[q]);
+}
+
+// --max-evals against the fewest plant runs the fit can make.
+void check_max_evals(const Options& o, const val::Calibration& cal) {
+  if (o.max_evals >= cal.min_evaluations()) return;
+  std::string what = std::to_string(split(o.fit).size()) + " parameter(s)";
+  if (!o.measured.empty()) what += " and " + std::to_string(2 * o.measured.size()) + " start speed(s)";
+  throw UsageError{"--max-evals: " + std::to_string(o.max_evals) + " is below the " +
+                   std::to_string(cal.min_evaluations()) + " plant evaluations a fit of " + what +
+                   " needs at the least (the start, and the residuals and the Jacobian at the result)"};
+}
+
+// The fit on test rig logs (docs/validation.md#measured-csv): the plant of
+// the one --scene driven by each log's inputs, no reference run.
+int run_measured(const Options& given, const CLI::App* sub, const std::vector<std::string>& fit) {
+  // A log is fitted on every row unless --every says otherwise (a rig's
+  // rate is its own, not the reference's 1 ms grid); the command written
+  // into the files says which.
+  Options o = given;
+  if (sub->count("--every") == 0) o.every = 1;
+  for (const char* flag : {"--set", "--sheaves", "--rtol", "--t-end", "--max-steps", "--out-dir"})
+    if (sub->count(flag) > 0)
+      throw UsageError{std::string(flag) + " is the reference's; a fit on --measured logs runs no reference"};
+  if (sub->count("--scene") == 0)
+    throw UsageError{"--measured needs --scene BASE: the plant (features, parameters) the logs drive"};
+  const auto names = split(o.scenes);
+  if (names.size() != 1)
+    throw UsageError{"--scene: with --measured, one scene (the plant the logs drive), not " +
+                     std::to_string(names.size())};
+  const auto loaded = resolve_scene(names.front());
+  cvt::files::CommandFiles files;
+  if (loaded->source != "built-in") files.input("--scene", loaded->source);
+  for (const auto& m : o.measured) files.input("--measured", m);
+  if (sub->count("--start") > 0) files.input("--start", o.start);
+  if (sub->count("--out") > 0) files.output("--out", o.out);
+  if (sub->count("--header") > 0) files.output("--header", o.header);
+  cvt::Scene plant = loaded->scene;
+  if (!o.start.empty()) apply_params_file(o.start, plant);
+  std::unique_ptr<val::Calibration> cal;
+  try {
+    cal = std::make_unique<val::Calibration>(fit, plant.params);
+  } catch (const val::InputError& e) {
+    throw UsageError{std::string("--fit: ") + e.what()};
+  }
+  const val::PistonAreas areas{o.piston_area1_m2, o.piston_area2_m2};
+  for (const auto& m : o.measured) {
+    const val::MeasuredLog log = val::read_measured_csv(m, areas);
+    cal->add_measured_case(m, plant, log, o.every);
+  }
+  check_max_evals(o, *cal);
+  val::CalibrationResult r;
+  {
+    Progress progress("calibrate", o.max_evals, "plant runs");
+    r = cal->run(o.max_evals, [&](long evals) { progress.update(static_cast<double>(evals)); });
+  }
+  std::string logs;
+  for (const auto& m : o.measured) logs += (logs.empty() ? "" : ",") + m;
+  const std::string fitted_on = logs + " (plant " + loaded->name + ")";
+  if (sub->count("--out") > 0) write_generated_file(o.out, val::params_file_text(r, command_line(o), fitted_on), "--out");
+  if (sub->count("--header") > 0)
+    write_generated_file(o.header, val::header_text(r, command_line(o), o.function), "--header");
+  if (o.json)
+    print_json(to_json(r, names, o, 0.0));
+  else
+    print_text(r, o, fitted_on);
+  return 0;
 }
 
 Action register_calibrate(CLI::App& app) {
@@ -161,6 +238,13 @@ Action register_calibrate(CLI::App& app) {
   add_int(sub, "--max-evals", opt->max_evals, 1, 100000,
           "Cap on plant evaluations of the fit, all counted: the start, the optimiser's and those at the result "
           "(default 400; at least the fitted parameters + 2)");
+  sub->add_option("--measured", opt->measured,
+                  "Fit on a test rig's log instead of reference runs (repeatable; CSV, "
+                  "docs/validation.md#measured-csv); --scene names the one plant the logs drive");
+  add_real(sub, "--piston-area1", opt->piston_area1_m2, {1e-6, 1.0},
+           "Driver piston area [m^2] turning a log's clamping pressure into a force (instead of the log's own)");
+  add_real(sub, "--piston-area2", opt->piston_area2_m2, {1e-6, 1.0},
+           "Driven piston area [m^2] turning a log's clamping pressure into a force (instead of the log's own)");
   sub->add_flag("--json", opt->json, "Print the result as JSON");
   return [opt, sub]() -> int {
     return guarded([&] {
@@ -171,6 +255,9 @@ Action register_calibrate(CLI::App& app) {
                          " is not a name for a C++ function (an identifier of at most 64 characters, not a keyword "
                          "nor reserved)"};
       const std::vector<std::string> fit = split(o.fit);
+      if (!o.measured.empty()) return run_measured(o, sub, fit);
+      if (sub->count("--piston-area1") > 0 || sub->count("--piston-area2") > 0)
+        throw UsageError{"--piston-area1/--piston-area2 turn a --measured log's pressures into forces; no --measured"};
       const auto names = split(o.scenes);
       if (names.empty()) throw UsageError{"--scene: no scene"};
       std::vector<std::shared_ptr<LoadedScene>> loaded;
@@ -204,11 +291,7 @@ Action register_calibrate(CLI::App& app) {
       } catch (const val::InputError& e) {
         throw UsageError{std::string("--fit: ") + e.what()};
       }
-      if (o.max_evals < cal->min_evaluations())
-        throw UsageError{"--max-evals: " + std::to_string(o.max_evals) + " is below the " +
-                         std::to_string(cal->min_evaluations()) + " plant evaluations a fit of " +
-                         std::to_string(fit.size()) +
-                         " parameter(s) needs at the least (the start, and the residuals and the Jacobian at the result)"};
+      check_max_evals(o, *cal);
       prepare_out_dir(o.ref);
       double ref_cpu = 0;
       for (std::size_t i = 0; i < loaded.size(); ++i) {
@@ -238,7 +321,7 @@ Action register_calibrate(CLI::App& app) {
       if (o.json)
         print_json(to_json(r, names, o, ref_cpu));
       else
-        print_text(r, o);
+        print_text(r, o, o.scenes);
       return 0;
     });
   };

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
+#include <iterator>
 #include <limits>
 #include <stdexcept>
 #include <type_traits>
@@ -119,15 +120,36 @@ void Calibration::add_case(const std::string& name, const cvt::Scene& plant_scen
   CalibrationCase c;
   c.name = name;
   c.scene = plant_scene;
-  every_ = every;
+  c.every = every;
   c.reference = reference.series.select(reference.series.size(), std::size_t(every));
-  for (int q = 0; q < kFitQuantityCount; ++q) c.scale[q] = reference_scale(c.reference.*(kFitQuantities[q].column));
+  c.quantities.assign(std::begin(kFitQuantities), std::end(kFitQuantities));
+  for (const FitQuantity& q : c.quantities) c.scale.push_back(reference_scale(c.reference.*(q.column)));
+  cases_.push_back(std::move(c));
+}
+
+void Calibration::add_measured_case(const std::string& name, const cvt::Scene& plant_scene, const MeasuredLog& log,
+                                    int every) {
+  std::string why;
+  if (!measured_fits_scene(log, plant_scene, why)) throw InputError(log.source + ": " + why);
+  CalibrationCase c;
+  c.name = name;
+  c.scene = plant_scene;
+  c.every = every;
+  c.measured = std::make_shared<const MeasuredLog>(log);
+  measured_start(log, c.scene.initial);
+  // Its start speeds are fitted too (docs/validation.md#measured-csv): two
+  // unknowns after the parameters and the cases before it.
+  c.start_unknown = static_cast<int>(fit_.size()) + 2 * measured_count_++;
+  c.reference = measured_series(log, every);
+  c.quantities = {kFitQuantities[0], kFitQuantities[1]};
+  if (log.has_ratio()) c.quantities.push_back(kRatioQuantity);
+  for (const FitQuantity& q : c.quantities) c.scale.push_back(reference_scale(c.reference.*(q.column)));
   cases_.push_back(std::move(c));
 }
 
 int Calibration::residual_count() const {
   int n = 0;
-  for (const auto& c : cases_) n += kFitQuantityCount * static_cast<int>(c.reference.size());
+  for (const auto& c : cases_) n += static_cast<int>(c.quantities.size() * c.reference.size());
   return n;
 }
 
@@ -145,12 +167,19 @@ void Calibration::residuals(const double* theta, double* f) {
   for (const auto& c : cases_) {
     cvt::Scene s = c.scene;
     apply(theta, s.params);
+    if (c.measured != nullptr) {
+      s.initial.omega1_rad_s += theta[c.start_unknown];
+      s.initial.omega2_rad_s += theta[c.start_unknown + 1];
+    }
     const std::size_t n = c.reference.size();
     Series p;
-    bool ok = cvt::validate_scene(s).ok;
+    bool ok = c.measured != nullptr || cvt::validate_scene(s).ok;
     if (ok) {
       try {
-        p = plant_run(s, s.frame_s).select(n * std::size_t(every_), std::size_t(every_));
+        if (c.measured != nullptr)
+          p = measured_plant_run(s, *c.measured, c.every);
+        else
+          p = plant_run(s, s.frame_s).select(n * std::size_t(c.every), std::size_t(c.every));
       } catch (const RunError&) {
         ok = false;
       }
@@ -160,11 +189,11 @@ void Calibration::residuals(const double* theta, double* f) {
       // smooth penalty keeps the optimiser away.
       ++faults_;
       const double w = 1.0 / std::sqrt(static_cast<double>(n));
-      for (std::size_t i = 0; i < kFitQuantityCount * n; ++i) f[k++] = 10.0 * w;
+      for (std::size_t i = 0; i < c.quantities.size() * n; ++i) f[k++] = 10.0 * w;
       continue;
     }
-    for (int q = 0; q < kFitQuantityCount; ++q) {
-      const auto col = kFitQuantities[q].column;
+    for (std::size_t q = 0; q < c.quantities.size(); ++q) {
+      const auto col = c.quantities[q].column;
       relative_residuals(p.*col, c.reference.*col, c.scale[q], f + k);
       k += static_cast<long>(n);
     }
@@ -228,15 +257,18 @@ struct CalibrationFunctor : Eigen::DenseFunctor<double> {
 };
 
 std::vector<double> Calibration::start_residuals() {
-  std::vector<double> theta(fit_.size(), 0.0), f(static_cast<std::size_t>(residual_count()));
+  std::vector<double> theta(static_cast<std::size_t>(unknown_count()), 0.0),
+      f(static_cast<std::size_t>(residual_count()));
   residuals(theta.data(), f.data());
   return f;
 }
 
-long Calibration::min_evaluations() const { return static_cast<long>(fit_.size()) + 2; }
+int Calibration::unknown_count() const { return static_cast<int>(fit_.size()) + 2 * measured_count_; }
+
+long Calibration::min_evaluations() const { return static_cast<long>(unknown_count()) + 2; }
 
 CalibrationResult Calibration::run(int max_evals, const std::function<void(long)>& on_eval) {
-  const int n = static_cast<int>(fit_.size());
+  const int n = unknown_count();
   const int m = residual_count();
   if (m == 0) throw InputError("no scene to fit on");
   if (max_evals < min_evaluations())
@@ -294,7 +326,7 @@ CalibrationResult Calibration::run(int max_evals, const std::function<void(long)
   // own runs are.
   r.evaluations = evals_;
   r.faults = faults_;
-  for (int i = 0; i < n; ++i) {
+  for (int i = 0; i < static_cast<int>(fit_.size()); ++i) {
     const Fitted& f = fit_[static_cast<std::size_t>(i)];
     FittedParam p;
     p.name = f.name;
@@ -310,9 +342,11 @@ CalibrationResult Calibration::run(int max_evals, const std::function<void(long)
     const long len = static_cast<long>(c.reference.size());
     CaseErrors e;
     e.scene = c.name;
-    for (int q = 0; q < kFitQuantityCount; ++q) {
-      e.rel_rms_start[q] = f0.segment(k, len).norm();
-      e.rel_rms_end[q] = f1.segment(k, len).norm();
+    e.measured = c.measured != nullptr;
+    for (const FitQuantity& q : c.quantities) {
+      e.quantities.push_back(q.name);
+      e.rel_rms_start.push_back(f0.segment(k, len).norm());
+      e.rel_rms_end.push_back(f1.segment(k, len).norm());
       k += len;
     }
     r.cases.push_back(e);
@@ -371,11 +405,24 @@ std::string format(const char* f, ...) {
 
 }  // namespace
 
+namespace {
+
+// Whether a fit was on measured logs (docs/validation.md#measured-csv).
+bool on_logs(const CalibrationResult& r) {
+  for (const auto& c : r.cases)
+    if (c.measured) return true;
+  return false;
+}
+
+}  // namespace
+
 std::string params_file_text(const CalibrationResult& r, const std::string& command, const std::string& scenes) {
-  std::string s = "# The real-time plant's lumped parameters fitted to the multibody reference\n";
-  s += format("# (docs/validation.md#calibration). Written by:\n#   %s\n", command.c_str());
-  s += format("# Least squares over the scenes %s: %d residuals, cost %.6g -> %.6g\n", scenes.c_str(), r.residuals,
-              r.cost_start, r.cost_end);
+  std::string s = on_logs(r) ? "# The real-time plant's lumped parameters fitted to measured logs\n"
+                             : "# The real-time plant's lumped parameters fitted to the multibody reference\n";
+  s += format("# (docs/validation.md#%s). Written by:\n#   %s\n", on_logs(r) ? "measured-csv" : "calibration",
+              command.c_str());
+  s += format("# Least squares over the %s %s: %d residuals, cost %.6g -> %.6g\n", on_logs(r) ? "logs" : "scenes",
+              scenes.c_str(), r.residuals, r.cost_start, r.cost_end);
   s += format("# (rms residual %.4g -> %.4g); one standard deviation from the Jacobian at the optimum.\n",
               r.rms_residual_start(), r.rms_residual_end());
   s += "[params]\n";
@@ -391,8 +438,10 @@ std::string params_file_text(const CalibrationResult& r, const std::string& comm
 
 std::string header_text(const CalibrationResult& r, const std::string& command, const std::string& function) {
   if (!is_cpp_identifier(function)) throw InputError("not a C++ identifier: '" + function + "'");
-  std::string s = "#pragma once\n// The real-time plant's lumped parameters fitted to the multibody reference\n";
-  s += format("// (docs/validation.md#calibration), written with the parameter file by:\n//   %s\n", command.c_str());
+  std::string s = std::string("#pragma once\n// The real-time plant's lumped parameters fitted to ") +
+                  (on_logs(r) ? "measured logs\n" : "the multibody reference\n");
+  s += format("// (docs/validation.md#%s), written with the parameter file by:\n//   %s\n",
+              on_logs(r) ? "measured-csv" : "calibration", command.c_str());
   s += format("// rms residual %.4g -> %.4g over %d residuals.\n", r.rms_residual_start(), r.rms_residual_end(),
               r.residuals);
   s += "#include \"cvtplant/plant/rom_params.hpp\"\n\nnamespace cvt::calibrated {\n\n";

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "cvtplant/scene/scene_params.hpp"
 #include "cvtplant/validation/cache.hpp"
 #include "cvtplant/validation/compare.hpp"
+#include "cvtplant/validation/measured.hpp"
 #include "cvtplant/validation/series.hpp"
 
 namespace cvt::validation {
@@ -33,19 +35,27 @@ inline constexpr FitQuantity kFitQuantities[] = {{"omega1", &Series::omega1_rad_
                                                  {"F_ax1", &Series::F_ax1_N},
                                                  {"torque_driver", &Series::torque_driver_Nm}};
 inline constexpr int kFitQuantityCount = 4;
+// A measured log's (docs/validation.md#measured-csv): the speeds, and the
+// geometric ratio where the log has one.
+inline constexpr FitQuantity kRatioQuantity{"ratio", &Series::ratio_geom};
 
 // The parameters calibrate can fit, by their [params] key: the plant's
 // lumped, effective values (the others are physical values the reference
 // shares); each is a row of scene/scene_params.hpp.
 std::vector<std::string> fittable_names();
 
-// One scene of the fit: the plant's scene (its parameters the start's) and
-// the reference's samples it is fitted to.
+// One case of the fit: the plant's scene (its parameters the start's) and
+// the samples it is fitted to, a reference run's or a measured log's (then
+// the plant is driven by the log's inputs).
 struct CalibrationCase {
   std::string name;
   cvt::Scene scene;
-  Series reference;  // every `every`-th sample of the reference run
-  std::array<ReferenceScale, kFitQuantityCount> scale;
+  Series reference;  // every `every`-th sample of the reference run or the log
+  int every = 1;
+  std::vector<FitQuantity> quantities;  // kFitQuantities, or a log's
+  std::vector<ReferenceScale> scale;    // one per quantity
+  std::shared_ptr<const MeasuredLog> measured;  // null: a reference run's case
+  int start_unknown = -1;  // a log's: the index of its start speeds' changes among the unknowns
 };
 
 struct FittedParam {
@@ -57,8 +67,11 @@ struct FittedParam {
 
 struct CaseErrors {
   std::string scene;
-  // The relative RMS error of each kFitQuantities entry at the start and the end.
-  std::array<double, kFitQuantityCount> rel_rms_start{}, rel_rms_end{};
+  bool measured = false;  // a measured log's case
+  // The relative RMS error of each of the case's quantities (their names in
+  // `quantities`) at the start and the end.
+  std::vector<const char*> quantities;
+  std::vector<double> rel_rms_start, rel_rms_end;
 };
 
 struct CalibrationResult {
@@ -86,6 +99,13 @@ class Calibration {
   // every `every`-th sample is fitted (a reference that stopped early is
   // fitted up to there).
   void add_case(const std::string& name, const cvt::Scene& plant_scene, const ReferenceRun& reference, int every);
+  // A measured log to fit on (docs/validation.md#measured-csv): the plant of
+  // plant_scene driven by the log's inputs, its speeds (and geometric ratio,
+  // where the log has one) against the log's on every `every`-th row.
+  // Throws InputError if the scene cannot be driven by the log.
+  // The start speeds are fitted with the parameters (two unknowns more),
+  // from measured_start's.
+  void add_measured_case(const std::string& name, const cvt::Scene& plant_scene, const MeasuredLog& log, int every);
 
   // Runs the fit with at most max_evals plant evaluations in all (each a
   // run of every case's plant): the start, the optimiser's steps and
@@ -95,7 +115,8 @@ class Calibration {
   // below min_evaluations().
   CalibrationResult run(int max_evals, const std::function<void(long evaluations)>& on_eval = {});
   // The fewest evaluations a fit can make: the start, and n + 1 at the
-  // result (n the fitted parameters).
+  // result (n the unknowns: the fitted parameters, and two start speeds per
+  // measured log).
   long min_evaluations() const;
 
   // The residual vector at the start's values (for tests and reports): per
@@ -112,11 +133,12 @@ class Calibration {
   std::vector<Fitted> fit_;
   cvt::RomParams base_;
   std::vector<CalibrationCase> cases_;
-  int every_ = 1;
   long evals_ = 0, faults_ = 0;
+  int measured_count_ = 0;
 
   friend struct CalibrationFunctor;
   int residual_count() const;
+  int unknown_count() const;
   void apply(const double* theta, cvt::RomParams& p) const;
   void residuals(const double* theta, double* f);
 };
