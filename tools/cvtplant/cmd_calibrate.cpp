@@ -21,6 +21,8 @@
 #include "cvtplant/files/paths.hpp"
 #include "cvtplant/validation/calibration.hpp"
 #include "cvtplant/validation/scene_check.hpp"
+#include "cvtplant/validation/suite.hpp"
+#include "cvtplant/validation/suite_check.hpp"
 
 namespace cvtcli {
 
@@ -39,6 +41,8 @@ struct Options {
   int every = 10;
   int max_evals = 400;
   bool json = false;
+  std::string suite;  // a manoeuvre suite to fit on instead of scenes
+  double max_t_end_s = 600;  // --suite: cap on its simulated seconds of reference
   std::vector<std::string> measured;  // test rig logs to fit on instead of reference runs
   double piston_area1_m2 = 0, piston_area2_m2 = 0;  // instead of the logs' own
 };
@@ -76,6 +80,7 @@ std::string shell_word(const std::string& a) {
 std::string command_line(const Options& o) {
   std::ostringstream s;
   s << "cvtplant calibrate";
+  if (!o.suite.empty()) s << " --suite " << o.suite;
   for (const auto& m : o.measured) s << " --measured " << shell_word(m);
   s << " --scene " << shell_word(o.scenes) << " --fit " << shell_word(o.fit);
   if (!o.start.empty()) s << " --start " << shell_word(o.start);
@@ -110,6 +115,11 @@ nlohmann::json to_json(const val::CalibrationResult& r, const std::vector<std::s
   j["rms_residual_start"] = r.rms_residual_start();
   j["rms_residual_end"] = r.rms_residual_end();
   j["reference_cpu_s"] = ref_cpu_s;  // of the runs made now (from the cache: none)
+  if (!o.suite.empty()) {
+    j["suite"] = o.suite;
+    j["set"] = o.ref.set;
+    j["held_out_faults"] = r.held_out_faults;
+  }
   nlohmann::json params = nlohmann::json::array();
   for (const auto& p : r.params)
     params.push_back({{"name", p.name},
@@ -125,6 +135,7 @@ nlohmann::json to_json(const val::CalibrationResult& r, const std::vector<std::s
     nlohmann::json e;
     e["scene"] = c.scene;
     if (c.measured) e["measured"] = true;
+    if (!o.suite.empty()) e["held_out"] = c.held_out;
     for (std::size_t q = 0; q < c.quantities.size(); ++q)
       e[c.quantities[q]] = {{"rel_rms_start", c.rel_rms_start[q]}, {"rel_rms_end", c.rel_rms_end[q]}};
     cases.push_back(e);
@@ -145,11 +156,11 @@ void print_text(const val::CalibrationResult& r, const Options& o, const std::st
       std::printf("not identifiable |\n");
   }
   std::printf("\n| %s | quantity | relative RMS error, start | after the fit |\n|---|---|---|---|\n",
-              o.measured.empty() ? "scene" : "log");
+              !o.measured.empty() ? "log" : !o.suite.empty() ? "manoeuvre" : "scene");
   for (const auto& c : r.cases)
     for (std::size_t q = 0; q < c.quantities.size(); ++q)
-      std::printf("| %s | %s | %.2f %% | %.2f %% |\n", c.scene.c_str(), c.quantities[q], 100.0 * c.rel_rms_start[q],
-                  100.0 * c.rel_rms_end[q]);
+      std::printf("| %s%s | %s | %.2f %% | %.2f %% |\n", c.scene.c_str(), c.held_out ? " (held out)" : "",
+                  c.quantities[q], 100.0 * c.rel_rms_start[q], 100.0 * c.rel_rms_end[q]);
 }
 
 // --max-evals against the fewest plant runs the fit can make.
@@ -218,6 +229,84 @@ int run_measured(const Options& given, const CLI::App* sub, const std::vector<st
   return 0;
 }
 
+// The fit on a manoeuvre suite (docs/validation.md#calibration-suite): the
+// reference runs `validate --suite` makes (the same cache), the held-out
+// manoeuvres reported, not fitted.
+int run_suite(const Options& given, const CLI::App* sub, const std::vector<std::string>& fit) {
+  for (const char* flag : {"--t-end", "--sheaves", "--piston-area1", "--piston-area2"})
+    if (sub->count(flag) > 0) throw UsageError{std::string(flag) + " does not apply to --suite (its manoeuvres set the runs)"};
+  Options o = given;
+  // As validate --suite: the plant ratio-control, the production set, and
+  // every 1 ms sample unless told otherwise (the ci suite's runs are 60 ms).
+  if (sub->count("--scene") == 0) o.scenes = "ratio-control";
+  if (o.ref.set.empty()) o.ref.set = "production";
+  if (sub->count("--every") == 0) o.every = 1;
+  const val::Suite suite = val::suite_by_name(o.suite);
+  const auto names = split(o.scenes);
+  if (names.size() != 1)
+    throw UsageError{"--scene: with --suite, one scene (the plant), not " + std::to_string(names.size())};
+  val::ReferenceConfig cfg;
+  cfg.set = val::parameter_set(o.ref.set);
+  cfg.rtol = o.ref.rtol;
+  if (o.ref.max_steps_opt != nullptr && o.ref.max_steps_opt->count() > 0)
+    cfg.max_steps_per_frame = std::min<long long>(o.ref.max_steps, cfg.max_steps_per_frame);
+  const auto loaded = resolve_scene(names.front());
+  cvt::files::CommandFiles files;
+  if (loaded->source != "built-in") files.input("--scene", loaded->source);
+  if (sub->count("--start") > 0) files.input("--start", o.start);
+  if (sub->count("--out") > 0) files.output("--out", o.out);
+  if (sub->count("--header") > 0) files.output("--header", o.header);
+  cvt::Scene plant = loaded->scene;
+  if (!o.start.empty()) apply_params_file(o.start, plant);
+  if ((plant.features & cvt::rom_feature::wedging) == 0)
+    throw UsageError{"--scene " + names.front() + ": a suite's plant needs the wedging feature (a variable ratio)"};
+  std::unique_ptr<val::Calibration> cal;
+  try {
+    cal = std::make_unique<val::Calibration>(fit, plant.params);
+  } catch (const val::InputError& e) {
+    throw UsageError{std::string("--fit: ") + e.what()};
+  }
+  check_max_evals(o, *cal);
+  val::SuiteOptions runs_only;
+  runs_only.maps = false;
+  runs_only.uncertainty = "none";
+  const double total_s = val::suite_reference_s(suite, cfg, runs_only);
+  if (total_s > o.max_t_end_s)
+    throw UsageError{"suite " + o.suite + ": " + exact_number(total_s) + " s of reference exceeds --max-t-end " +
+                     exact_number(o.max_t_end_s) + " s"};
+  prepare_out_dir(o.ref);
+  std::vector<val::Manoeuvre> all = suite.fit;
+  all.insert(all.end(), suite.held_out.begin(), suite.held_out.end());
+  std::vector<val::ReferenceRun> refs;
+  {
+    Progress progress("calibrate --suite " + o.suite + ": reference", total_s);
+    refs = val::reference_manoeuvres(all, cfg, o.ref.out_dir + "/reference-cache",
+                                     [&](double t) { progress.update(t); });
+  }
+  double ref_cpu = 0;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    report_cache_problem("calibrate", refs[i]);
+    if (!refs[i].from_cache) ref_cpu += refs[i].cpu_s;
+    cal->add_manoeuvre_case(all[i], plant, refs[i], o.every, i >= suite.fit.size());
+  }
+  val::CalibrationResult r;
+  {
+    Progress progress("calibrate", o.max_evals, "plant runs");
+    r = cal->run(o.max_evals, [&](long evals) { progress.update(static_cast<double>(evals)); });
+  }
+  const std::string fitted_on = "suite " + o.suite + " (plant " + loaded->name + ", " + o.ref.set + " set)";
+  if (sub->count("--out") > 0) write_generated_file(o.out, val::params_file_text(r, command_line(o), fitted_on), "--out");
+  if (sub->count("--header") > 0)
+    write_generated_file(o.header, val::header_text(r, command_line(o), o.function), "--header");
+  std::vector<std::string> run_names;
+  for (const auto& m : all) run_names.push_back(m.name);
+  if (o.json)
+    print_json(to_json(r, run_names, o, ref_cpu));
+  else
+    print_text(r, o, fitted_on);
+  return 0;
+}
+
 Action register_calibrate(CLI::App& app) {
   auto opt = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
@@ -238,6 +327,12 @@ Action register_calibrate(CLI::App& app) {
   add_int(sub, "--max-evals", opt->max_evals, 1, 100000,
           "Cap on plant evaluations of the fit, all counted: the start, the optimiser's and those at the result "
           "(default 400; at least the fitted parameters + 2)");
+  sub->add_option("--suite", opt->suite,
+                  "Fit on a manoeuvre suite's runs instead of scenes (" + joined(val::suite_names()) +
+                      "; docs/validation.md#calibration-suite): its held-out runs are reported, not fitted; --scene "
+                      "names the plant (default ratio-control), --set defaults to production");
+  add_real(sub, "--max-t-end", opt->max_t_end_s, {0, 1e5, true},
+           "--suite: refuse a suite above this many simulated seconds of reference, cached or not (default 600)");
   sub->add_option("--measured", opt->measured,
                   "Fit on a test rig's log instead of reference runs (repeatable; CSV, "
                   "docs/validation.md#measured-csv); --scene names the one plant the logs drive");
@@ -255,6 +350,9 @@ Action register_calibrate(CLI::App& app) {
                          " is not a name for a C++ function (an identifier of at most 64 characters, not a keyword "
                          "nor reserved)"};
       const std::vector<std::string> fit = split(o.fit);
+      if (!o.suite.empty() && !o.measured.empty()) throw UsageError{"--suite and --measured: one or the other"};
+      if (sub->count("--max-t-end") > 0 && o.suite.empty()) throw UsageError{"--max-t-end caps a --suite; no --suite"};
+      if (!o.suite.empty()) return run_suite(o, sub, fit);
       if (!o.measured.empty()) return run_measured(o, sub, fit);
       if (sub->count("--piston-area1") > 0 || sub->count("--piston-area2") > 0)
         throw UsageError{"--piston-area1/--piston-area2 turn a --measured log's pressures into forces; no --measured"};

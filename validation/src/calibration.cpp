@@ -15,6 +15,7 @@
 
 #include "cvtplant/scene/scene_params.hpp"
 #include "cvtplant/validation/errors.hpp"
+#include "cvtplant/validation/manoeuvre.hpp"
 #include "cvtplant/validation/plant.hpp"
 
 namespace cvt::validation {
@@ -147,9 +148,28 @@ void Calibration::add_measured_case(const std::string& name, const cvt::Scene& p
   cases_.push_back(std::move(c));
 }
 
+void Calibration::add_manoeuvre_case(const Manoeuvre& m, const cvt::Scene& plant_scene, const ReferenceRun& reference,
+                                     int every, bool held_out) {
+  if ((plant_scene.features & cvt::rom_feature::wedging) == 0)
+    throw InputError("manoeuvre " + m.name + ": the plant needs the wedging feature (a variable ratio)");
+  CalibrationCase c;
+  c.name = m.name;
+  c.scene = plant_scene;
+  c.every = every;
+  c.manoeuvre = std::make_shared<const Manoeuvre>(m);
+  c.manoeuvre_reference = std::make_shared<const Series>(reference.series);
+  c.held_out = held_out;
+  c.reference = reference.series.select(reference.series.size(), std::size_t(every));
+  c.quantities.assign(std::begin(kFitQuantities), std::end(kFitQuantities));
+  c.quantities.push_back(kRatioQuantity);
+  for (const FitQuantity& q : c.quantities) c.scale.push_back(reference_scale(c.reference.*(q.column)));
+  cases_.push_back(std::move(c));
+}
+
 int Calibration::residual_count() const {
   int n = 0;
-  for (const auto& c : cases_) n += static_cast<int>(c.quantities.size() * c.reference.size());
+  for (const auto& c : cases_)
+    if (!c.held_out) n += static_cast<int>(c.quantities.size() * c.reference.size());
   return n;
 }
 
@@ -158,45 +178,55 @@ void Calibration::apply(const double* theta, cvt::RomParams& p) const {
     set(p, *fit_[i].row, fitted_value(fit_[i].fit, get(base_, *fit_[i].row), theta[i]));
 }
 
-// Residuals: for each case and quantity, relative_residuals of the plant
-// against the reference, so each case's sum of squares is the sum of its
-// quantities' squared relative RMS errors (compare.hpp, as `validate`).
+// One case's residuals at theta into f (its quantities' in turn); false
+// (and the penalty) where the plant cannot run the parameters.
+bool Calibration::case_residuals(const CalibrationCase& c, const double* theta, double* f) const {
+  cvt::Scene s = c.scene;
+  apply(theta, s.params);
+  if (c.measured != nullptr) {
+    s.initial.omega1_rad_s += theta[c.start_unknown];
+    s.initial.omega2_rad_s += theta[c.start_unknown + 1];
+  }
+  const std::size_t n = c.reference.size();
+  const std::size_t every = static_cast<std::size_t>(c.every);
+  Series p;
+  bool ok = c.measured != nullptr || cvt::validate_scene(s).ok;
+  if (ok) {
+    try {
+      if (c.measured != nullptr)
+        p = measured_plant_run(s, *c.measured, c.every);
+      else if (c.manoeuvre != nullptr)
+        p = plant_manoeuvre(*c.manoeuvre, s, c.manoeuvre_reference.get()).select(n * every, every);
+      else
+        p = plant_run(s, s.frame_s).select(n * every, every);
+    } catch (const RunError&) {
+      ok = false;
+    }
+  }
+  if (!ok || p.size() < n) {
+    // A parameter set the plant cannot run (its watchdog trips): a large,
+    // smooth penalty keeps the optimiser away.
+    const double w = 1.0 / std::sqrt(static_cast<double>(n));
+    for (std::size_t i = 0; i < c.quantities.size() * n; ++i) f[i] = 10.0 * w;
+    return false;
+  }
+  for (std::size_t q = 0; q < c.quantities.size(); ++q) {
+    const auto col = c.quantities[q].column;
+    relative_residuals(p.*col, c.reference.*col, c.scale[q], f + q * n);
+  }
+  return true;
+}
+
+// Residuals: for each fitted case and quantity, relative_residuals of the
+// plant against the reference, so each case's sum of squares is the sum of
+// its quantities' squared relative RMS errors (compare.hpp, as `validate`).
 void Calibration::residuals(const double* theta, double* f) {
   ++evals_;
   long k = 0;
   for (const auto& c : cases_) {
-    cvt::Scene s = c.scene;
-    apply(theta, s.params);
-    if (c.measured != nullptr) {
-      s.initial.omega1_rad_s += theta[c.start_unknown];
-      s.initial.omega2_rad_s += theta[c.start_unknown + 1];
-    }
-    const std::size_t n = c.reference.size();
-    Series p;
-    bool ok = c.measured != nullptr || cvt::validate_scene(s).ok;
-    if (ok) {
-      try {
-        if (c.measured != nullptr)
-          p = measured_plant_run(s, *c.measured, c.every);
-        else
-          p = plant_run(s, s.frame_s).select(n * std::size_t(c.every), std::size_t(c.every));
-      } catch (const RunError&) {
-        ok = false;
-      }
-    }
-    if (!ok || p.size() < n) {
-      // A parameter set the plant cannot run (its watchdog trips): a large,
-      // smooth penalty keeps the optimiser away.
-      ++faults_;
-      const double w = 1.0 / std::sqrt(static_cast<double>(n));
-      for (std::size_t i = 0; i < c.quantities.size() * n; ++i) f[k++] = 10.0 * w;
-      continue;
-    }
-    for (std::size_t q = 0; q < c.quantities.size(); ++q) {
-      const auto col = c.quantities[q].column;
-      relative_residuals(p.*col, c.reference.*col, c.scale[q], f + k);
-      k += static_cast<long>(n);
-    }
+    if (c.held_out) continue;
+    if (!case_residuals(c, theta, f + k)) ++faults_;
+    k += static_cast<long>(c.quantities.size() * c.reference.size());
   }
 }
 
@@ -343,6 +373,26 @@ CalibrationResult Calibration::run(int max_evals, const std::function<void(long)
     CaseErrors e;
     e.scene = c.name;
     e.measured = c.measured != nullptr;
+    e.held_out = c.held_out;
+    if (c.held_out) {
+      // Not fitted: its plant runs at the start and at the result, for the
+      // report only (not counted in `evaluations`).
+      const std::size_t size = c.quantities.size() * c.reference.size();
+      std::vector<double> f_start(size), f_end(size);
+      const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
+      if (!case_residuals(c, zero.data(), f_start.data())) ++r.held_out_faults;
+      if (!case_residuals(c, theta.data(), f_end.data())) ++r.held_out_faults;
+      for (std::size_t q = 0; q < c.quantities.size(); ++q) {
+        e.quantities.push_back(c.quantities[q].name);
+        const auto part = [&](const std::vector<double>& f) {
+          return Eigen::Map<const Eigen::VectorXd>(f.data() + q * c.reference.size(), len).norm();
+        };
+        e.rel_rms_start.push_back(part(f_start));
+        e.rel_rms_end.push_back(part(f_end));
+      }
+      r.cases.push_back(e);
+      continue;
+    }
     for (const FitQuantity& q : c.quantities) {
       e.quantities.push_back(q.name);
       e.rel_rms_start.push_back(f0.segment(k, len).norm());

@@ -16,6 +16,7 @@
 #include "cvtplant/scene/scene_params.hpp"
 #include "cvtplant/validation/cache.hpp"
 #include "cvtplant/validation/compare.hpp"
+#include "cvtplant/validation/manoeuvre.hpp"
 #include "cvtplant/validation/measured.hpp"
 #include "cvtplant/validation/series.hpp"
 
@@ -56,6 +57,11 @@ struct CalibrationCase {
   std::vector<ReferenceScale> scale;    // one per quantity
   std::shared_ptr<const MeasuredLog> measured;  // null: a reference run's case
   int start_unknown = -1;  // a log's: the index of its start speeds' changes among the unknowns
+  // A suite's manoeuvre (null: none): the plant runs it with the
+  // reference's holding clamping (manoeuvre_reference, every sample).
+  std::shared_ptr<const Manoeuvre> manoeuvre;
+  std::shared_ptr<const Series> manoeuvre_reference;
+  bool held_out = false;  // reported at the start and the result, never fitted
 };
 
 struct FittedParam {
@@ -68,6 +74,7 @@ struct FittedParam {
 struct CaseErrors {
   std::string scene;
   bool measured = false;  // a measured log's case
+  bool held_out = false;  // not fitted (a suite's held-out manoeuvre)
   // The relative RMS error of each of the case's quantities (their names in
   // `quantities`) at the start and the end.
   std::vector<const char*> quantities;
@@ -77,6 +84,7 @@ struct CaseErrors {
 struct CalibrationResult {
   int status = 0;  // Eigen's LevenbergMarquardtSpace::Status
   long evaluations = 0, faults = 0;  // plant runs of the fit, and those the plant could not run
+  long held_out_faults = 0;  // held-out runs (two each, besides `evaluations`) the plant could not run
   long iterations = 0;
   int residuals = 0;
   double cost_start = 0, cost_end = 0;  // sums of squares of the residuals
@@ -106,6 +114,14 @@ class Calibration {
   // The start speeds are fitted with the parameters (two unknowns more),
   // from measured_start's.
   void add_measured_case(const std::string& name, const cvt::Scene& plant_scene, const MeasuredLog& log, int every);
+  // A suite's manoeuvre (docs/validation.md#calibration-suite): the plant of
+  // plant_scene (with wedging, else InputError) through m as plant_manoeuvre
+  // runs it with the reference's holding clamping, against the reference's
+  // omega1, omega2, F_ax1, torque on the driver and geometric ratio on every
+  // `every`-th sample. A held-out one is not fitted: its errors at the
+  // start and at the result are reported (two plant runs more).
+  void add_manoeuvre_case(const Manoeuvre& m, const cvt::Scene& plant_scene, const ReferenceRun& reference, int every,
+                          bool held_out);
 
   // Runs the fit with at most max_evals plant evaluations in all (each a
   // run of every case's plant): the start, the optimiser's steps and
@@ -141,6 +157,7 @@ class Calibration {
   int unknown_count() const;
   void apply(const double* theta, cvt::RomParams& p) const;
   void residuals(const double* theta, double* f);
+  bool case_residuals(const CalibrationCase& c, const double* theta, double* f) const;
 };
 
 // Whether name can be the header's function name: a C++ identifier of at
