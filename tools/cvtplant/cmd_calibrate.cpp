@@ -272,8 +272,11 @@ int run_suite(const Options& given, const CLI::App* sub, const std::vector<std::
   runs_only.uncertainty = "none";
   const double total_s = val::suite_reference_s(suite, cfg, runs_only);
   if (total_s > o.max_t_end_s)
-    throw UsageError{"suite " + o.suite + ": " + exact_number(total_s) + " s of reference exceeds --max-t-end " +
-                     exact_number(o.max_t_end_s) + " s"};
+  {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%.6g s of reference exceeds --max-t-end %.6g s", total_s, o.max_t_end_s);
+    throw UsageError{"suite " + o.suite + ": " + buf};
+  }
   prepare_out_dir(o.ref);
   std::vector<val::Manoeuvre> all = suite.fit;
   all.insert(all.end(), suite.held_out.begin(), suite.held_out.end());
