@@ -304,18 +304,31 @@ Series measured_plant_run(const cvt::Scene& scene, const MeasuredLog& log, int e
     f.clamp2_N = log.has_clamp2() ? p.of(log.clamp2_N) : std::nan("");
     return f;
   };
-  const Series frame = plant_run_driven(s, frames, drive);
-  // The plant's outputs on the rows' times, linear between its frames.
-  Series out;
+  // The frames around each compared row: the one at or before its time
+  // and the next.
   const std::size_t step = static_cast<std::size_t>(std::max(1, every));
+  const auto frame_of = [&](double t) {
+    return std::min(static_cast<long>(std::max(0.0, std::floor(t / s.frame_s))), frames - 1);
+  };
+  std::vector<char> keep(static_cast<std::size_t>(frames) + 1, 0);
+  for (std::size_t i = 0; i < log.size(); i += step) {
+    const long j = frame_of(log.t_s[i] - t0);
+    keep[static_cast<std::size_t>(j)] = keep[static_cast<std::size_t>(j) + 1] = 1;
+  }
+  const Series frame = plant_run_driven(s, frames, drive, &keep);
+  // The plant's outputs on the rows' times, linear between its frames
+  // (`place` is frame j's among the kept frames).
+  Series out;
+  long j_at = 0;
+  std::size_t place = 0;
   for (std::size_t i = 0; i < log.size(); i += step) {
     const double t = log.t_s[i] - t0;
-    const double x = t / s.frame_s;
-    const std::size_t j = std::min(static_cast<std::size_t>(std::max(0.0, std::floor(x))), frame.size() - 2);
-    const double w = x - static_cast<double>(j);
+    const long j = frame_of(t);
+    for (; j_at < j; ++j_at) place += keep[static_cast<std::size_t>(j_at)] != 0 ? 1 : 0;
+    const double w = t / s.frame_s - static_cast<double>(j);
     for (const auto c : kSeriesColumns) {
       const std::vector<double>& v = frame.*c;
-      (out.*c).push_back(c == &Series::t_s ? t : v[j] + w * (v[j + 1] - v[j]));
+      (out.*c).push_back(c == &Series::t_s ? t : v[place] + w * (v[place + 1] - v[place]));
     }
   }
   return out;

@@ -79,12 +79,14 @@ Series plant_run(const cvt::Scene& s, double sample_s) {
   return out;
 }
 
-Series plant_run_driven(const cvt::Scene& s, long frames, const std::function<FrameInputs(double)>& drive) {
+Series plant_run_driven(const cvt::Scene& s, long frames, const std::function<FrameInputs(double)>& drive,
+                        const std::vector<char>* keep) {
   auto holder = load_plant(s);
   cvt::IRomSimulator<double>& sim = holder->sim();
   const bool wedging = (s.features & cvt::rom_feature::wedging) != 0;
   Series out;
-  out.reserve(static_cast<std::size_t>(frames) + 1);
+  const auto kept = [&](long i) { return keep == nullptr || (*keep)[static_cast<std::size_t>(i)] != 0; };
+  if (keep == nullptr) out.reserve(static_cast<std::size_t>(frames) + 1);
   const auto inputs = [&](const FrameInputs& f) {
     cvt::RomInputs<double> u;
     u.tau_in_Nm = f.tau_in_Nm;
@@ -100,12 +102,12 @@ Series plant_run_driven(const cvt::Scene& s, long frames, const std::function<Fr
   // Inputs sampled at the start of each frame and held (zero-order hold), as run_frames.
   for (long i = 0; i < frames; ++i) {
     const double t0 = static_cast<double>(i) * s.frame_s;
-    push_sample(out, s, t0, sim, f.clamp1_N, driven(f));
+    if (kept(i)) push_sample(out, s, t0, sim, f.clamp1_N, driven(f));
     if (wedging) sim.set_driven_clamp_command(driven(f));
     if (sim.step_frame(inputs(f)) != cvt::RomFault::none) throw_fault(t0 + s.frame_s, sim.fault());
     f = drive(static_cast<double>(i + 1) * s.frame_s);
   }
-  push_sample(out, s, static_cast<double>(frames) * s.frame_s, sim, f.clamp1_N, driven(f));
+  if (kept(frames)) push_sample(out, s, static_cast<double>(frames) * s.frame_s, sim, f.clamp1_N, driven(f));
   return out;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // The real-time plant on the validation's sample grid (docs/validation.md#method).
 #include <functional>
+#include <vector>
 
 #include "cvtplant/scene/scene.hpp"
 #include "cvtplant/validation/series.hpp"
@@ -21,8 +22,11 @@ struct FrameInputs {
 };
 
 // The plant of scene s (its features, parameters and initial state; its
-// input profiles unused) driven for `frames` frames by drive(t_s), every
-// frame sampled, t = 0 included. Throws as plant_run.
-Series plant_run_driven(const cvt::Scene& s, long frames, const std::function<FrameInputs(double t_s)>& drive);
+// input profiles unused) driven for `frames` frames by drive(t_s), sampled
+// after each frame and at t = 0: every one, or those whose keep[i] is
+// non-zero (keep: frames + 1 entries; a long log keeps only the frames
+// around its rows). Throws as plant_run.
+Series plant_run_driven(const cvt::Scene& s, long frames, const std::function<FrameInputs(double t_s)>& drive,
+                        const std::vector<char>* keep = nullptr);
 
 }  // namespace cvt::validation
