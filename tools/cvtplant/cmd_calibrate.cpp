@@ -134,7 +134,12 @@ nlohmann::json to_json(const val::CalibrationResult& r, const std::vector<std::s
   for (const auto& c : r.cases) {
     nlohmann::json e;
     e["scene"] = c.scene;
-    if (c.measured) e["measured"] = true;
+    if (c.measured) {
+      e["measured"] = true;
+      const auto& v = c.start_speeds;
+      e["start_speeds"] = {{"omega1_rad_s", v.omega1_rad_s}, {"omega2_rad_s", v.omega2_rad_s},
+                           {"sigma1_rad_s", v.sigma1_rad_s}, {"sigma2_rad_s", v.sigma2_rad_s}};
+    }
     if (!o.suite.empty()) e["held_out"] = c.held_out;
     for (std::size_t q = 0; q < c.quantities.size(); ++q)
       e[c.quantities[q]] = {{"rel_rms_start", c.rel_rms_start[q]}, {"rel_rms_end", c.rel_rms_end[q]}};
@@ -161,6 +166,11 @@ void print_text(const val::CalibrationResult& r, const Options& o, const std::st
     for (std::size_t q = 0; q < c.quantities.size(); ++q)
       std::printf("| %s%s | %s | %.2f %% | %.2f %% |\n", c.scene.c_str(), c.held_out ? " (held out)" : "",
                   c.quantities[q], 100.0 * c.rel_rms_start[q], 100.0 * c.rel_rms_end[q]);
+  for (const auto& c : r.cases)
+    if (c.measured)
+      std::printf("\n%s: start speeds fitted to omega1 = %.6g +- %.2g rad/s, omega2 = %.6g +- %.2g rad/s\n",
+                  c.scene.c_str(), c.start_speeds.omega1_rad_s, c.start_speeds.sigma1_rad_s,
+                  c.start_speeds.omega2_rad_s, c.start_speeds.sigma2_rad_s);
 }
 
 // --max-evals against the fewest plant runs the fit can make.

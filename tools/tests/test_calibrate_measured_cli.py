@@ -66,6 +66,10 @@ class Example(unittest.TestCase):
         self.assertIsNone(params["creep_gain"]["sigma"])
         case = j["cases"][0]
         self.assertTrue(case["measured"])
+        # The start speeds, fitted too: the plant's 150 and 100 rad/s.
+        v = case["start_speeds"]
+        self.assertLess(abs(v["omega1_rad_s"] - 150.0), 3 * v["sigma1_rad_s"], v)
+        self.assertLess(abs(v["omega2_rad_s"] - 100.0), 3 * v["sigma2_rad_s"], v)
         for q in ("omega1", "omega2", "ratio"):
             self.assertLess(case[q]["rel_rms_end"], case[q]["rel_rms_start"], q)
         # What is left is about the noise: 0.2 rad/s on about 157 rad/s.
@@ -88,6 +92,7 @@ class Example(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertIn("| log | quantity |", r.stdout)
         self.assertIn("| ratio |", r.stdout)
+        self.assertIn("start speeds fitted to omega1 = ", r.stdout)
 
 
 class BadInput(unittest.TestCase):

@@ -373,6 +373,13 @@ CalibrationResult Calibration::run(int max_evals, const std::function<void(long)
     CaseErrors e;
     e.scene = c.name;
     e.measured = c.measured != nullptr;
+    if (c.measured != nullptr) {
+      // The log's start speeds as fitted (additive unknowns: one standard
+      // deviation is the root of the covariance's diagonal entry).
+      const int u = c.start_unknown;
+      e.start_speeds = {c.scene.initial.omega1_rad_s + theta[u], c.scene.initial.omega2_rad_s + theta[u + 1],
+                        std::sqrt(std::max(0.0, s2 * cov(u, u))), std::sqrt(std::max(0.0, s2 * cov(u + 1, u + 1)))};
+    }
     e.held_out = c.held_out;
     if (c.held_out) {
       // Not fitted: its plant runs at the start and at the result, for the

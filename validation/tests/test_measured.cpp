@@ -226,6 +226,12 @@ TEST_SUITE("measured") {
     const double rel_noise_1 = 0.2 / 157.0, rel_noise_2 = 0.2 / 108.0;
     REQUIRE(r.cases.size() == 1u);
     CHECK(r.cases[0].measured);
+    // The start speeds, fitted with the parameters, are the truth's.
+    const auto& v = r.cases[0].start_speeds;
+    CHECK(std::fabs(v.omega1_rad_s - truth.initial.omega1_rad_s) < 3.0 * v.sigma1_rad_s);
+    CHECK(std::fabs(v.omega2_rad_s - truth.initial.omega2_rad_s) < 3.0 * v.sigma2_rad_s);
+    CHECK(v.sigma1_rad_s < 0.2);  // below one sample's noise
+    CHECK(v.sigma2_rad_s < 0.2);
     CHECK(r.cases[0].rel_rms_end[0] == doctest::Approx(rel_noise_1).epsilon(0.1));
     CHECK(r.cases[0].rel_rms_end[1] == doctest::Approx(rel_noise_2).epsilon(0.1));
   }

@@ -75,6 +75,11 @@ struct CaseErrors {
   std::string scene;
   bool measured = false;  // a measured log's case
   bool held_out = false;  // not fitted (a suite's held-out manoeuvre)
+  // A measured log's: its start speeds as fitted and one standard
+  // deviation of each [rad/s].
+  struct StartSpeeds {
+    double omega1_rad_s = 0, omega2_rad_s = 0, sigma1_rad_s = 0, sigma2_rad_s = 0;
+  } start_speeds;
   // The relative RMS error of each of the case's quantities (their names in
   // `quantities`) at the start and the end.
   std::vector<const char*> quantities;
