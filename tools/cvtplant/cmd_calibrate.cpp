@@ -4,6 +4,7 @@
 // module's (validation/include/cvtplant/validation/calibration.hpp); this
 // file parses the options, loads the scenes and prints.
 #include <cmath>
+#include <filesystem>
 #include <cstdio>
 #include <memory>
 #include <sstream>
@@ -204,6 +205,14 @@ int run_measured(const Options& given, const CLI::App* sub, const std::vector<st
   cvt::files::CommandFiles files;
   if (loaded->source != "built-in") files.input("--scene", loaded->source);
   for (const auto& m : o.measured) files.input("--measured", m);
+  // A log given twice would count twice and shrink the stated sigmas.
+  for (std::size_t i = 0; i < o.measured.size(); ++i)
+    for (std::size_t k = 0; k < i; ++k) {
+      std::error_code ec;
+      if (o.measured[i] == o.measured[k] || std::filesystem::equivalent(o.measured[i], o.measured[k], ec))
+        throw UsageError{"--measured: " + cvtcli::quoted(o.measured[i]) + " is given twice (as " + cvtcli::quoted(o.measured[k]) +
+                         ")"};
+    }
   if (sub->count("--start") > 0) files.input("--start", o.start);
   if (sub->count("--out") > 0) files.output("--out", o.out);
   if (sub->count("--header") > 0) files.output("--header", o.header);

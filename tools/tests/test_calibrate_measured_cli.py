@@ -87,6 +87,20 @@ class Example(unittest.TestCase):
         with open(self.hpp) as f:
             self.assertIn("constexpr void apply(RomParams& p)", f.read())
 
+    def test_two_logs_fit_together(self):
+        other = os.path.join(self.tmp.name, "second-rig-log.csv")
+        shutil.copyfile(LOG, other)
+        j = quiet_json(self, run("calibrate", "--measured", LOG, "--measured", other, "--scene", PLANT, "--fit",
+                                 "k1_N_m", "--max-evals", "7", "--json"))
+        self.assertEqual(j["measured"], [LOG, other])
+        self.assertEqual(j["residuals"], 2 * 3 * 301)
+        self.assertEqual(len(j["cases"]), 2)
+        self.assertLessEqual(j["plant_evaluations"], 7)
+        # One parameter and two start speeds per log: 7 evaluations at the least.
+        r = run("calibrate", "--measured", LOG, "--measured", other, "--scene", PLANT, "--fit", "k1_N_m",
+                "--max-evals", "6")
+        assert_usage_error(self, r, "4 start speed(s)")
+
     def test_text_table(self):
         r = run("calibrate", "--measured", LOG, "--scene", PLANT, "--fit", "k1_N_m", "--start", self.start)
         self.assertEqual(r.returncode, 0, r.stderr)
@@ -149,6 +163,10 @@ class BadInput(unittest.TestCase):
     def test_bad_options(self):
         log = self.file("log.csv", HEADER + ROWS)
         self.check(["calibrate", "--measured", log, "--fit", "k1_N_m"], "--measured needs --scene")
+        # The same log twice (by another name too) would count twice.
+        self.check(["calibrate", "--measured", log, "--measured", log, "--scene", PLANT], "given twice")
+        self.check(["calibrate", "--measured", log, "--measured", os.path.join(self.tmp.name, ".", "log.csv"),
+                    "--scene", PLANT], "given twice")
         self.check(["calibrate", "--measured", log, "--scene", PLANT + ",clamp-step"], "one scene")
         self.check(["calibrate", "--measured", log, "--scene", PLANT, "--set", "production"], "--set is the reference's")
         self.check(["calibrate", "--measured", log, "--scene", PLANT, "--fit", "k1_N_m", "--max-evals", "4"],
