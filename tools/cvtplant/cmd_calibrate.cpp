@@ -4,8 +4,8 @@
 // module's (validation/include/cvtplant/validation/calibration.hpp); this
 // file parses the options, loads the scenes and prints.
 #include <cmath>
-#include <filesystem>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -184,6 +184,21 @@ void check_max_evals(const Options& o, const val::Calibration& cal) {
                    " needs at the least (the start, and the residuals and the Jacobian at the result)"};
 }
 
+// The files --out and --header, and the result printed (a fit on logs or
+// on a suite; `fitted_on` names what it was fitted on).
+int report(const val::CalibrationResult& r, const Options& o, const CLI::App* sub, const std::string& fitted_on,
+           const std::vector<std::string>& names, double ref_cpu_s) {
+  if (sub->count("--out") > 0)
+    write_generated_file(o.out, val::params_file_text(r, command_line(o), fitted_on), "--out");
+  if (sub->count("--header") > 0)
+    write_generated_file(o.header, val::header_text(r, command_line(o), o.function), "--header");
+  if (o.json)
+    print_json(to_json(r, names, o, ref_cpu_s));
+  else
+    print_text(r, o, fitted_on);
+  return 0;
+}
+
 // The fit on test rig logs (docs/validation.md#measured-csv): the plant of
 // the one --scene driven by each log's inputs, no reference run.
 int run_measured(const Options& given, const CLI::App* sub, const std::vector<std::string>& fit) {
@@ -210,8 +225,8 @@ int run_measured(const Options& given, const CLI::App* sub, const std::vector<st
     for (std::size_t k = 0; k < i; ++k) {
       std::error_code ec;
       if (o.measured[i] == o.measured[k] || std::filesystem::equivalent(o.measured[i], o.measured[k], ec))
-        throw UsageError{"--measured: " + cvtcli::quoted(o.measured[i]) + " is given twice (as " + cvtcli::quoted(o.measured[k]) +
-                         ")"};
+        throw UsageError{"--measured: " + cvtcli::quoted(o.measured[i]) + " is given twice (as " +
+                         cvtcli::quoted(o.measured[k]) + ")"};
     }
   if (sub->count("--start") > 0) files.input("--start", o.start);
   if (sub->count("--out") > 0) files.output("--out", o.out);
@@ -238,14 +253,7 @@ int run_measured(const Options& given, const CLI::App* sub, const std::vector<st
   std::string logs;
   for (const auto& m : o.measured) logs += (logs.empty() ? "" : ",") + m;
   const std::string fitted_on = logs + " (plant " + loaded->name + ")";
-  if (sub->count("--out") > 0) write_generated_file(o.out, val::params_file_text(r, command_line(o), fitted_on), "--out");
-  if (sub->count("--header") > 0)
-    write_generated_file(o.header, val::header_text(r, command_line(o), o.function), "--header");
-  if (o.json)
-    print_json(to_json(r, names, o, 0.0));
-  else
-    print_text(r, o, fitted_on);
-  return 0;
+  return report(r, o, sub, fitted_on, names, 0.0);
 }
 
 // The fit on a manoeuvre suite (docs/validation.md#calibration-suite): the
@@ -253,7 +261,8 @@ int run_measured(const Options& given, const CLI::App* sub, const std::vector<st
 // manoeuvres reported, not fitted.
 int run_suite(const Options& given, const CLI::App* sub, const std::vector<std::string>& fit) {
   for (const char* flag : {"--t-end", "--sheaves", "--piston-area1", "--piston-area2"})
-    if (sub->count(flag) > 0) throw UsageError{std::string(flag) + " does not apply to --suite (its manoeuvres set the runs)"};
+    if (sub->count(flag) > 0)
+      throw UsageError{std::string(flag) + " does not apply to --suite (its manoeuvres set the runs)"};
   Options o = given;
   // As validate --suite: the plant ratio-control, the production set, and
   // every 1 ms sample unless told otherwise (the ci suite's runs are 60 ms).
@@ -317,16 +326,9 @@ int run_suite(const Options& given, const CLI::App* sub, const std::vector<std::
     r = cal->run(o.max_evals, [&](long evals) { progress.update(static_cast<double>(evals)); });
   }
   const std::string fitted_on = "suite " + o.suite + " (plant " + loaded->name + ", " + o.ref.set + " set)";
-  if (sub->count("--out") > 0) write_generated_file(o.out, val::params_file_text(r, command_line(o), fitted_on), "--out");
-  if (sub->count("--header") > 0)
-    write_generated_file(o.header, val::header_text(r, command_line(o), o.function), "--header");
   std::vector<std::string> run_names;
   for (const auto& m : all) run_names.push_back(m.name);
-  if (o.json)
-    print_json(to_json(r, run_names, o, ref_cpu));
-  else
-    print_text(r, o, fitted_on);
-  return 0;
+  return report(r, o, sub, fitted_on, run_names, ref_cpu);
 }
 
 Action register_calibrate(CLI::App& app) {

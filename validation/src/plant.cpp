@@ -94,7 +94,9 @@ Series plant_run_driven(const cvt::Scene& s, long frames, const std::function<Fr
     u.clamp_N = f.clamp1_N;
     return u;
   };
-  const auto driven = [&](const FrameInputs& f) { return std::isnan(f.clamp2_N) ? s.params.driven_clamp_N : f.clamp2_N; };
+  const auto driven = [&](const FrameInputs& f) {
+    return std::isnan(f.clamp2_N) ? s.params.driven_clamp_N : f.clamp2_N;
+  };
   FrameInputs f = drive(0.0);
   // The driven actuator starts at its first command (reset settles it there).
   if (wedging) sim.set_driven_clamp_command(driven(f));
