@@ -322,6 +322,9 @@ TEST_CASE("production lumps follow from the production set (docs/rom.md#producti
   CHECK(rc.params.driven_clamp_N == pr::kClampMin_N);
   CHECK(rc.clamp.at(0.0) / rc.params.driven_clamp_N == doctest::Approx(kappa0).epsilon(1e-6));
   CHECK(2.0 * 0.09 * rc.clamp.at(0.0) * r1 / std::cos(d.beta0_rad) > 1.3 * rc.tau_in.at(0.0));
+  // Validated against the reference's production set; the seed's scenes keep Table 1's.
+  for (const cvt::Scene& s : cvt::kBuiltinScenes)
+    CHECK(std::string(s.reference_set) == (std::string(s.name) == "ratio-control" ? "production" : "seed"));
 }
 
 namespace {

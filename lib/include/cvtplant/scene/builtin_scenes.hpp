@@ -165,6 +165,7 @@ constexpr Scene ratio_control() {
       "12.5 kN driven clamping (ratio 1.5 held), 150/100 rad/s; the plant for ratio control over CAN";
   s.features = rom_feature::axial | rom_feature::road_load | rom_feature::wedging | rom_feature::tension;
   production_cvt(s.params);
+  s.reference_set = "production";
   road(s);
   s.initial.omega1_rad_s = 150.0;
   s.initial.omega2_rad_s = 100.0;
