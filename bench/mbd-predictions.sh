@@ -14,8 +14,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-build/mbd-figures}
 build=${2:-build/host-release}
-[ -f "$build/CMakeCache.txt" ] || cmake --preset host-release >&2
-cmake --build "$build" --target cvtplant >&2
+. bench/build-host.sh
+build_host "$build" cvtplant
 "$build/tools/cvtplant" mbd figures --out-dir "$out" --t-end 10 --picture-t 7.5 --json >"$out.json"
 
 python3 - "$out" <<'PY'

@@ -28,9 +28,8 @@ solvers=${3:-chain,klu}
 only=${ONLY:-}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-echo "building cvtplant in $build..." >&2
-[ -f "$build/CMakeCache.txt" ] || cmake --preset host-release >&2
-cmake --build "$build" --target cvtplant >&2
+. bench/build-host.sh
+build_host "$build" cvtplant
 cli=$build/tools/cvtplant
 
 run() {  # name t_end args...

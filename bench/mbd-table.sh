@@ -22,9 +22,8 @@ build=${1:-build/host-release}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-echo "building cvtplant in $build..." >&2
-[ -f "$build/CMakeCache.txt" ] || cmake --preset host-release >&2
-cmake --build "$build" --target cvtplant >&2
+. bench/build-host.sh
+build_host "$build" cvtplant
 cli=$build/tools/cvtplant
 
 for c in 1 2; do

@@ -72,18 +72,13 @@ for label, n in m4.items():
     print("| %s | %d | %s | %s |" % (label, n, cell(f32), cell(f64)))
 for label, n in fixed.items():
     print("| %s (q16.16) | %d | - | - |" % (label, n))
-if parts:
-    print()
-    print("| part of a seed-case1 frame (float, M4F) | instructions |")
-    print("|---|---:|")
-    for name, n in parts:
-        print("| %s | %d |" % (name, n))
-if wparts:
-    print()
-    print("| part of a ratio-control frame (float, M4F) | instructions |")
-    print("|---|---:|")
-    for name, n in wparts:
-        print("| %s | %d |" % (name, n))
+for title, rows in (("part of a seed-case1 frame", parts), ("part of a ratio-control frame", wparts)):
+    if rows:
+        print()
+        print("| %s (float, M4F) | instructions |" % title)
+        print("|---|---:|")
+        for name, n in rows:
+            print("| %s | %d |" % (name, n))
 if runs:
     print()
     print("| scene, every frame of a run from its start (float, M4F) | frames | min | median | p99.9 | max | max / median |")

@@ -18,8 +18,8 @@ cd "$(dirname "$0")/.."
 out=${1:-build/seed-section4}
 cache=${2:-$out/reference-cache}
 build=${3:-build/host-release}
-[ -f "$build/CMakeCache.txt" ] || cmake --preset host-release >&2
-cmake --build "$build" --target cvtplant >&2
+. bench/build-host.sh
+build_host "$build" cvtplant
 mkdir -p "$out" "$cache"
 cvt="$build/tools/cvtplant"
 full=(--convergence 10,100 --rk4 2 --surrogates 19 --cache-dir "$cache" --json)

@@ -37,9 +37,8 @@ build=${1:-build/host-release}
 reps=${2:-3}
 scenarios=${3:-all}
 case $reps in ''|*[!0-9]*|0) echo "sil-reference-speed.sh: REPS must be a whole number >= 1, got '$reps'" >&2; exit 2;; esac
-echo "building cvtplant-sil in $build..." >&2
-[ -f "$build/CMakeCache.txt" ] || cmake --preset host-release >&2
-cmake --build "$build" --target cvtplant-sil >&2
+. bench/build-host.sh
+build_host "$build" cvtplant-sil
 sil=$build/hil/cvtplant-sil
 
 for rep in $(seq "$reps"); do

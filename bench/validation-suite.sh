@@ -14,9 +14,8 @@ cd "$(dirname "$0")/.."
 build=${1:-build/host-release}
 out=${2:-build/validation}
 shift $(( $# > 2 ? 2 : $# ))
-echo "building cvtplant in $build..." >&2
-[ -f "$build/CMakeCache.txt" ] || cmake --preset host-release >&2
-cmake --build "$build" --target cvtplant >&2
+. bench/build-host.sh
+build_host "$build" cvtplant
 cli=$build/tools/cvtplant
 mkdir -p "$out"
 "$cli" validate --suite controller --out-dir "$out" --json "$@" >"$out/suite-controller.json"

@@ -6,16 +6,13 @@
 
 #include "cvtplant/analysis/errors.hpp"
 #include "cvtplant/analysis/series.hpp"
+#include "fmt.hpp"
 
 namespace cvt::analysis {
 
 namespace {
 
-std::string fmt(const char* f, double a, double b = 0, double c = 0) {
-  char buf[320];
-  std::snprintf(buf, sizeof buf, f, a, b, c);
-  return buf;
-}
+using detail::fmt;
 
 bool regular_kind(const std::string& k) { return k == "periodic" || k == "quasi_periodic" || k == "fixed_point"; }
 

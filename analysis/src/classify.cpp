@@ -6,15 +6,12 @@
 
 #include "cvtplant/analysis/errors.hpp"
 #include "cvtplant/analysis/series.hpp"
+#include "fmt.hpp"
 
 namespace cvt::analysis {
 namespace {
 
-std::string fmt(const char* f, double a, double b = 0, double c = 0) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf, f, a, b, c);
-  return buf;
-}
+using detail::fmt;
 
 double quarter_std(const std::vector<double>& x, int q) {
   const std::size_t n = x.size() / 4;

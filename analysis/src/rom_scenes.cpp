@@ -12,6 +12,7 @@
 #include "cvtplant/plant/rom_signals.hpp"
 #include "cvtplant/scene/builtin_scenes.hpp"
 #include "cvtplant/scene/scene_runner.hpp"
+#include "fmt.hpp"
 #include "rom_scenes_detail.hpp"
 
 namespace cvt::analysis {
@@ -22,11 +23,7 @@ void load(Holder& h, const cvt::Scene& s, const std::string& name) {
   if (!issue.ok) throw InputError("scene '" + name + "': " + issue.field + ": " + issue.message);
 }
 
-std::string fmt(const char* f, double a, double b, double c) {
-  char buf[320];
-  std::snprintf(buf, sizeof buf, f, a, b, c);
-  return buf;
-}
+std::string fmt(const char* f, double a, double b, double c) { return detail::fmt(f, a, b, c); }
 
 cvt::Scene apply(const cvt::Scene& base, const std::string& name, const Params& p) {
   cvt::Scene s = base;

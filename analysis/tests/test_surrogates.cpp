@@ -23,6 +23,18 @@ std::vector<double> ar1(std::size_t n, unsigned seed) {
   return x;
 }
 
+// The test's options at embedding (m, tau), predicting tau ahead, with or
+// without the exponent statistic.
+SurrogateTestOptions embedded(int m, int tau, int theiler, double dt, bool exponent) {
+  SurrogateTestOptions o;
+  o.m = m;
+  o.tau = o.horizon = tau;
+  o.theiler = theiler;
+  o.dt = dt;
+  o.exponent = exponent;
+  return o;
+}
+
 bool five_smooth(std::size_t n) {
   for (std::size_t p : {2u, 3u, 5u})
     while (n % p == 0) n /= p;
@@ -84,13 +96,7 @@ TEST_CASE("surrogates: prediction error of noise is sqrt(1 + 1/k), of Lorenz sma
 }
 
 TEST_CASE("surrogates: Lorenz is nonlinear against its surrogates, a linear Gaussian process is not") {
-  SurrogateTestOptions o;
-  o.m = 3;
-  o.tau = 18;
-  o.horizon = 18;
-  o.theiler = 100;
-  o.dt = 0.01;
-  o.exponent = false;
+  const SurrogateTestOptions o = embedded(3, 18, 100, 0.01, false);
   const SurrogateTest lz = surrogate_test(testsig::lorenz_x(5000), o);
   REQUIRE(lz.statistics.size() == 2);
   CHECK(lz.statistics[1].name == "prediction_error");
@@ -99,14 +105,7 @@ TEST_CASE("surrogates: Lorenz is nonlinear against its surrogates, a linear Gaus
   CHECK(lz.nonlinear);
   CHECK(lz.segment.length >= 4500);
 
-  SurrogateTestOptions a = o;
-  a.m = 2;
-  a.tau = 1;
-  a.horizon = 1;
-  a.theiler = 10;
-  a.dt = 1;
-  a.exponent = true;
-  const SurrogateTest lin = surrogate_test(ar1(5000, 21), a);
+  const SurrogateTest lin = surrogate_test(ar1(5000, 21), embedded(2, 1, 10, 1, true));
   REQUIRE(lin.statistics.size() == 3);
   CHECK_FALSE(lin.nonlinear);
   for (const auto& s : lin.statistics) {

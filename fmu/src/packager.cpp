@@ -131,12 +131,15 @@ void add_units(pugi::xml_node root, const Model& m) {
   }
 }
 
-template <class AddItem>
-void fault_items(AddItem&& add) {
+// The watchdog's faults as the enumeration's items of `parent` (both FMI versions).
+void add_fault_items(pugi::xml_node parent) {
   for (int i = 0; i < 256; ++i) {
     const RomFault f = static_cast<RomFault>(i);
     if (std::string(rom_fault_name(f)) == "?") break;
-    add(i, rom_fault_name(f), rom_fault_description(f));
+    pugi::xml_node it = parent.append_child("Item");
+    it.append_attribute("name") = rom_fault_name(f);
+    it.append_attribute("value") = i;
+    it.append_attribute("description") = rom_fault_description(f);
   }
 }
 
@@ -165,6 +168,39 @@ void put_bounds(pugi::xml_node n, const Variable& v) {
   if (v.max != kNoBound) n.append_attribute("max") = num(v.max).c_str();
 }
 
+// The XML declaration and the root element `name` of an FMI `version` file.
+pugi::xml_node fmi_root(pugi::xml_document& doc, const char* name, const char* version) {
+  pugi::xml_node decl = doc.append_child(pugi::node_declaration);
+  decl.append_attribute("version") = "1.0";
+  decl.append_attribute("encoding") = "UTF-8";
+  pugi::xml_node root = doc.append_child(name);
+  root.append_attribute("fmiVersion") = version;
+  return root;
+}
+
+// A variable's attributes common to both versions, in their order.
+void put_variable(pugi::xml_node n, const Variable& v) {
+  n.append_attribute("name") = v.name;
+  n.append_attribute("valueReference") = v.vr;
+  n.append_attribute("description") = v.description;
+  n.append_attribute("causality") = causality_name(v.causality);
+  n.append_attribute("variability") = variability_name(v.variability);
+}
+
+// A variable's type attributes: the fault type, unit and display unit,
+// bounds and start value (on the variable in FMI 3.0, on its type element in 2.0).
+void put_value(pugi::xml_node t, const Variable& v) {
+  if (v.type == VarType::enumeration) t.append_attribute("declaredType") = kFaultType;
+  if (v.type == VarType::float64 && v.unit != nullptr) {
+    t.append_attribute("unit") = v.unit;
+    const UnitInfo u = unit_info(v.unit);
+    if (u.display != nullptr) t.append_attribute("displayUnit") = u.display;
+  }
+  if (v.type == VarType::float64) put_bounds(t, v);
+  if (v.has_start)
+    t.append_attribute("start") = v.type == VarType::boolean ? (v.start != 0 ? "true" : "false") : num(v.start).c_str();
+}
+
 std::string xml_text(const pugi::xml_document& doc) {
   std::ostringstream o;
   doc.save(o, "  ", pugi::format_default, pugi::encoding_utf8);
@@ -173,11 +209,7 @@ std::string xml_text(const pugi::xml_document& doc) {
 
 std::string fmi3_description(const PackageRequest& r, const Model& m) {
   pugi::xml_document doc;
-  pugi::xml_node decl = doc.append_child(pugi::node_declaration);
-  decl.append_attribute("version") = "1.0";
-  decl.append_attribute("encoding") = "UTF-8";
-  pugi::xml_node root = doc.append_child("fmiModelDescription");
-  root.append_attribute("fmiVersion") = "3.0";
+  pugi::xml_node root = fmi_root(doc, "fmiModelDescription", "3.0");
   root.append_attribute("modelName") = r.name.c_str();
   root.append_attribute("description") = description_of(r).c_str();
   root.append_attribute("instantiationToken") = m.token.c_str();
@@ -204,32 +236,15 @@ std::string fmi3_description(const PackageRequest& r, const Model& m) {
   pugi::xml_node et = types.append_child("EnumerationType");
   et.append_attribute("name") = kFaultType;
   et.append_attribute("description") = "the plant's watchdog faults (docs/rom.md#watchdog)";
-  fault_items([&](int value, const char* name, const char* description) {
-    pugi::xml_node it = et.append_child("Item");
-    it.append_attribute("name") = name;
-    it.append_attribute("value") = value;
-    it.append_attribute("description") = description;
-  });
+  add_fault_items(et);
   add_log_categories(root);
   add_experiment(root, r.scene);
   pugi::xml_node vars = root.append_child("ModelVariables");
   for (const Variable& v : m.vars) {
     const char* tag = v.type == VarType::float64 ? "Float64" : v.type == VarType::boolean ? "Boolean" : "Enumeration";
     pugi::xml_node n = vars.append_child(tag);
-    n.append_attribute("name") = v.name;
-    n.append_attribute("valueReference") = v.vr;
-    n.append_attribute("description") = v.description;
-    n.append_attribute("causality") = causality_name(v.causality);
-    n.append_attribute("variability") = variability_name(v.variability);
-    if (v.type == VarType::enumeration) n.append_attribute("declaredType") = kFaultType;
-    if (v.type == VarType::float64 && v.unit != nullptr) {
-      n.append_attribute("unit") = v.unit;
-      const UnitInfo u = unit_info(v.unit);
-      if (u.display != nullptr) n.append_attribute("displayUnit") = u.display;
-    }
-    if (v.type == VarType::float64) put_bounds(n, v);
-    if (v.has_start)
-      n.append_attribute("start") = v.type == VarType::boolean ? (v.start != 0 ? "true" : "false") : num(v.start).c_str();
+    put_variable(n, v);
+    put_value(n, v);
   }
   pugi::xml_node ms = root.append_child("ModelStructure");
   for (const Variable& v : m.vars)
@@ -263,11 +278,7 @@ std::string sources_unit(const PackageRequest& r, const char* file) {
 
 std::string fmi2_description(const PackageRequest& r, const Model& m) {
   pugi::xml_document doc;
-  pugi::xml_node decl = doc.append_child(pugi::node_declaration);
-  decl.append_attribute("version") = "1.0";
-  decl.append_attribute("encoding") = "UTF-8";
-  pugi::xml_node root = doc.append_child("fmiModelDescription");
-  root.append_attribute("fmiVersion") = "2.0";
+  pugi::xml_node root = fmi_root(doc, "fmiModelDescription", "2.0");
   root.append_attribute("modelName") = r.name.c_str();
   root.append_attribute("guid") = m.token.c_str();
   root.append_attribute("description") = description_of(r).c_str();
@@ -293,33 +304,15 @@ std::string fmi2_description(const PackageRequest& r, const Model& m) {
   st.append_attribute("name") = kFaultType;
   st.append_attribute("description") = "the plant's watchdog faults (docs/rom.md#watchdog)";
   pugi::xml_node en = st.append_child("Enumeration");
-  fault_items([&](int value, const char* name, const char* description) {
-    pugi::xml_node it = en.append_child("Item");
-    it.append_attribute("name") = name;
-    it.append_attribute("value") = value;
-    it.append_attribute("description") = description;
-  });
+  add_fault_items(en);
   add_log_categories(root);
   add_experiment(root, r.scene);
   pugi::xml_node vars = root.append_child("ModelVariables");
   for (const Variable& v : m.vars) {
     pugi::xml_node sv = vars.append_child("ScalarVariable");
-    sv.append_attribute("name") = v.name;
-    sv.append_attribute("valueReference") = v.vr;
-    sv.append_attribute("description") = v.description;
-    sv.append_attribute("causality") = causality_name(v.causality);
-    sv.append_attribute("variability") = variability_name(v.variability);
+    put_variable(sv, v);
     const char* tag = v.type == VarType::float64 ? "Real" : v.type == VarType::boolean ? "Boolean" : "Enumeration";
-    pugi::xml_node t = sv.append_child(tag);
-    if (v.type == VarType::enumeration) t.append_attribute("declaredType") = kFaultType;
-    if (v.type == VarType::float64 && v.unit != nullptr) {
-      t.append_attribute("unit") = v.unit;
-      const UnitInfo u = unit_info(v.unit);
-      if (u.display != nullptr) t.append_attribute("displayUnit") = u.display;
-    }
-    if (v.type == VarType::float64) put_bounds(t, v);
-    if (v.has_start)
-      t.append_attribute("start") = v.type == VarType::boolean ? (v.start != 0 ? "true" : "false") : num(v.start).c_str();
+    put_value(sv.append_child(tag), v);
   }
   pugi::xml_node ms = root.append_child("ModelStructure");
   pugi::xml_node outs = ms.append_child("Outputs");
@@ -336,11 +329,7 @@ std::string fmi2_description(const PackageRequest& r, const Model& m) {
 
 std::string build_description(const Model& m) {
   pugi::xml_document doc;
-  pugi::xml_node decl = doc.append_child(pugi::node_declaration);
-  decl.append_attribute("version") = "1.0";
-  decl.append_attribute("encoding") = "UTF-8";
-  pugi::xml_node root = doc.append_child("fmiBuildDescription");
-  root.append_attribute("fmiVersion") = "3.0";
+  pugi::xml_node root = fmi_root(doc, "fmiBuildDescription", "3.0");
   pugi::xml_node bc = root.append_child("BuildConfiguration");
   bc.append_attribute("modelIdentifier") = m.id.c_str();
   bc.append_attribute("description") =

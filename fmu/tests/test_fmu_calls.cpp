@@ -26,6 +26,21 @@ std::string fmu_of(const std::string& scene, int version, const std::string& dir
   return out;
 }
 
+// A built-in scene's FMU of one FMI version, packaged and unpacked in a
+// fresh temp_dir(name), its library loaded and one instance made; tests
+// take the parts apart with a structured binding.
+template <class Api, class Instance>
+struct Loaded {
+  std::string dir;
+  Unpacked fmu;
+  Api api;
+  Instance inst;
+  Loaded(const char* name, const char* scene, int version)
+      : dir(temp_dir(name)), fmu(fmu_of(scene, version, dir), dir + "/unpacked"), api(fmu.binary()), inst(api, fmu) {}
+};
+using Loaded3 = Loaded<Api3, Instance3>;
+using Loaded2 = Loaded<Api2, Instance2>;
+
 // The outputs a test follows, as bit patterns.
 const char* const kWatched[] = {"omega1", "omega2", "F_ax", "slip", "r1", "F_ax2", "E_residual", "torque_transmitted"};
 
@@ -78,10 +93,8 @@ int resume_in_new_process(int argc, char** argv) {
 
 TEST_SUITE("importer") {
   TEST_CASE("FMU state: get/set and serialise/deserialise continue bit-identically, also in another process") {
-    const std::string dir = temp_dir("fmu-state");
-    const Unpacked fmu(fmu_of("ratio-control", 3, dir), dir + "/unpacked");
-    const Api3 api(fmu.binary());
-    Instance3 a(api, fmu);
+    Loaded3 loaded("fmu-state", "ratio-control", 3);
+    auto& [dir, fmu, api, a] = loaded;
     REQUIRE(a.init() == fmi3OK);
     const double h = fmu.frame_s;
     steps(a, h, 0, 300);
@@ -144,10 +157,8 @@ TEST_SUITE("importer") {
   }
 
   TEST_CASE("FMI 2.0 FMU state: restored bit-identically") {
-    const std::string dir = temp_dir("fmu-state2");
-    const Unpacked fmu(fmu_of("tip-in", 2, dir), dir + "/unpacked");
-    const Api2 api(fmu.binary());
-    Instance2 a(api, fmu);
+    Loaded2 loaded("fmu-state2", "tip-in", 2);
+    auto& [dir, fmu, api, a] = loaded;
     REQUIRE(a.init() == fmi2OK);
     const double h = fmu.frame_s;
     for (long i = 0; i < 200; ++i) REQUIRE(a.step(i * h, h) == fmi2OK);
@@ -319,10 +330,8 @@ TEST_SUITE("importer") {
   }
 
   TEST_CASE("FMI 2.0 bad calls: instantiation, resource URI, steps") {
-    const std::string dir = temp_dir("fmu-bad2");
-    const Unpacked fmu(fmu_of("tip-in", 2, dir), dir + "/unpacked");
-    const Api2 api(fmu.binary());
-    Instance2 inst(api, fmu);
+    Loaded2 loaded("fmu-bad2", "tip-in", 2);
+    auto& [dir, fmu, api, inst] = loaded;
     REQUIRE(inst.ok());
     fmi2CallbackFunctions cb{};
     CHECK(api.fmi2Instantiate("x", fmi2ModelExchange, fmu.token.c_str(), "file:///tmp", &cb, 0, 0) == nullptr);
@@ -377,10 +386,8 @@ TEST_SUITE("importer") {
 
 TEST_SUITE("importer") {
   TEST_CASE("the driven clamping input reaches F_ax2 through the actuator's first-order lag (closed form)") {
-    const std::string dir = temp_dir("fmu-driven");
-    const Unpacked fmu(fmu_of("ratio-control", 3, dir), dir + "/unpacked");
-    const Api3 api(fmu.binary());
-    Instance3 inst(api, fmu);
+    Loaded3 loaded("fmu-driven", "ratio-control", 3);
+    auto& [dir, fmu, api, inst] = loaded;
     REQUIRE(inst.ok());
     REQUIRE(api.fmi3EnterInitializationMode(inst.get(), false, 0, 0, false, 0) == fmi3OK);
     const double f0 = inst.real("params.driven_clamp_N"), tau = inst.real("params.actuator_tau_s");

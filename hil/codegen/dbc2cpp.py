@@ -163,11 +163,13 @@ class Sig:
             self.enum_name = camel(self.name)
 
     # C++ pieces ---------------------------------------------------------
-    def cpp_type(self):
-        return {"bool": "bool", "float": "float", "enum": getattr(self, "enum_name", ""),
-                "int": getattr(self, "ctype", "")}[self.kind]
+    # The field's type and a value's literal, in dialect d (CPP or C99).
+    def type_name(self, d):
+        if self.kind == "enum":
+            return d.enum_type(self.enum_name)
+        return {"bool": "bool", "float": "float", "int": getattr(self, "ctype", "")}[self.kind]
 
-    def cpp_value(self, raw=None, phys=None):
+    def value(self, d, raw=None, phys=None):
         if self.kind == "float":
             if phys is None:
                 phys = Decimal(raw) * self.factor + self.offset
@@ -177,7 +179,7 @@ class Sig:
         if self.kind == "bool":
             return "true" if raw else "false"
         if self.kind == "enum":
-            return "%s::%s" % (self.enum_name, self.values[raw])
+            return d.enum_const(self.enum_name, self.values[raw])
         return cint(raw)
 
     def comment(self):
@@ -303,6 +305,9 @@ class CppDialect:
     def enum_valid(self, enum_name):
         return "is_valid"
 
+    def enum_const(self, enum_name, value):
+        return "%s::%s" % (enum_name, value)
+
 
 class CDialect:
     def field(self, name):
@@ -323,6 +328,9 @@ class CDialect:
     def enum_valid(self, enum_name):
         return c_enum_type(enum_name) + "_is_valid"
 
+    def enum_const(self, enum_name, value):
+        return c_enum_const(enum_name, value)
+
 
 # C99 pieces (docs/can.md#c-codec): the same arithmetic as the C++ methods
 # above, so both codecs give identical frames and values.
@@ -338,23 +346,7 @@ def c_enum_const(enum_name, value):
     return "CVT_%s_%s" % (c_upper(enum_name), c_upper(value))
 
 
-def sig_c_type(s):
-    return {"bool": "bool", "float": "float", "enum": c_enum_type(getattr(s, "enum_name", "")),
-            "int": getattr(s, "ctype", "")}[s.kind]
-
-
-def sig_c_value(s, raw=None, phys=None):
-    if s.kind == "float":
-        if phys is None:
-            phys = Decimal(raw) * s.factor + s.offset
-        return flit(phys)
-    if phys is not None:
-        raw = int(phys)
-    if s.kind == "bool":
-        return "true" if raw else "false"
-    if s.kind == "enum":
-        return c_enum_const(s.enum_name, s.values[raw])
-    return cint(raw)
+CPP, C99 = CppDialect(), CDialect()
 
 
 class Msg:
@@ -491,7 +483,7 @@ def generate(path):
         w("")
         for s in m.signals:
             c = s.comment()
-            w("  %s %s = %s;%s" % (s.cpp_type(), s.name, s.cpp_value(raw=s.init_raw),
+            w("  %s %s = %s;%s" % (s.type_name(CPP), s.name, s.value(CPP, raw=s.init_raw),
                                     ("  // " + c) if c else ""))
         w("")
         w("  static constexpr SignalInfo kSignals[%d] = {" % len(m.signals))
@@ -512,7 +504,7 @@ def generate(path):
         w("inline CodecStatus pack(const %s& m, uint8_t (&payload)[8]) noexcept {" % m.name)
         w("  uint64_t w = 0;")
         for s in m.signals:
-            L.extend(s.pack_lines(CppDialect()))
+            L.extend(s.pack_lines(CPP))
         w("  bits::store_le64(w, payload);")
         w("  return CodecStatus::Ok;")
         w("}")
@@ -522,7 +514,7 @@ def generate(path):
         w("  const uint64_t w = bits::load_le64(payload);")
         w("  %s m;" % m.name)
         for s in m.signals:
-            L.extend(s.unpack_lines(CppDialect()))
+            L.extend(s.unpack_lines(CPP))
         w("  out = m;")
         w("  return CodecStatus::Ok;")
         w("}")
@@ -533,9 +525,9 @@ def generate(path):
         w("  %s m = last;" % m.name)
         for s in m.signals:
             if s.timeout_action == "Replace":
-                w("  m.%s = %s;  // Replace: init value" % (s.name, s.cpp_value(raw=s.init_raw)))
+                w("  m.%s = %s;  // Replace: init value" % (s.name, s.value(CPP, raw=s.init_raw)))
             elif s.timeout_action == "Substitute":
-                w("  m.%s = %s;  // Substitute" % (s.name, s.cpp_value(phys=s.substitute)))
+                w("  m.%s = %s;  // Substitute" % (s.name, s.value(CPP, phys=s.substitute)))
         w("  return m;")
         w("}")
         w("")
@@ -548,7 +540,7 @@ def generate(path):
             w("  (void)dt_s;")
         for s in ramps:
             w("  m.%s = ramp_toward(m.%s, %s, %s * dt_s);  // Ramp, %s %s/s" % (
-                s.name, s.name, s.cpp_value(phys=s.substitute), flit(s.rate), format(s.rate.normalize(), "f"), s.unit or "1"))
+                s.name, s.name, s.value(CPP, phys=s.substitute), flit(s.rate), format(s.rate.normalize(), "f"), s.unit or "1"))
         w("  return m;")
         w("}")
         w("")
@@ -738,7 +730,7 @@ def generate_c(path):
         h("typedef struct {")
         for sg in m.signals:
             cm = sg.comment()
-            h("  %s %s;%s" % (sig_c_type(sg), sg.name, ("  /* " + cm + " */") if cm else ""))
+            h("  %s %s;%s" % (sg.type_name(C99), sg.name, ("  /* " + cm + " */") if cm else ""))
         h("} %s;" % t)
         h("extern const char* const %s_signal_names[%d];" % (t, len(m.signals)))
         h("/* Every signal at its initial value (GenSigStartValue). */")
@@ -765,13 +757,13 @@ def generate_c(path):
         c("")
         c("void %s_init(%s* m) {" % (t, t))
         for sg in m.signals:
-            c("  m->%s = %s;" % (sg.name, sig_c_value(sg, raw=sg.init_raw)))
+            c("  m->%s = %s;" % (sg.name, sg.value(C99, raw=sg.init_raw)))
         c("}")
         c("")
         c("cvt_codec_status %s_pack(const %s* m, uint8_t payload[8]) {" % (t, t))
         c("  uint64_t w = 0;")
         for sg in m.signals:
-            C.extend(sg.pack_lines(CDialect()))
+            C.extend(sg.pack_lines(C99))
         c("  cvt_can_store_le64(w, payload);")
         c("  return CVT_CODEC_OK;")
         c("}")
@@ -780,7 +772,7 @@ def generate_c(path):
         c("  const uint64_t w = cvt_can_load_le64(payload);")
         c("  %s m;" % t)
         for sg in m.signals:
-            C.extend(sg.unpack_lines(CDialect()))
+            C.extend(sg.unpack_lines(C99))
         c("  *out = m;")
         c("  return CVT_CODEC_OK;")
         c("}")
@@ -821,10 +813,10 @@ def generate_c(path):
         acted = False
         for sg in m.signals:
             if sg.timeout_action == "Replace":
-                c("  m->%s = %s; /* Replace: init value */" % (sg.name, sig_c_value(sg, raw=sg.init_raw)))
+                c("  m->%s = %s; /* Replace: init value */" % (sg.name, sg.value(C99, raw=sg.init_raw)))
                 acted = True
             elif sg.timeout_action == "Substitute":
-                c("  m->%s = %s; /* Substitute */" % (sg.name, sig_c_value(sg, phys=sg.substitute)))
+                c("  m->%s = %s; /* Substitute */" % (sg.name, sg.value(C99, phys=sg.substitute)))
                 acted = True
         if not acted:
             c("  (void)m;")
@@ -837,7 +829,7 @@ def generate_c(path):
             c("  (void)dt_s;")
         for sg in ramps:
             c("  m->%s = cvt_can_ramp_toward(m->%s, %s, %s * dt_s); /* Ramp, %s %s/s */" % (
-                sg.name, sg.name, sig_c_value(sg, phys=sg.substitute), flit(sg.rate),
+                sg.name, sg.name, sg.value(C99, phys=sg.substitute), flit(sg.rate),
                 format(sg.rate.normalize(), "f"), sg.unit or "1"))
         c("}")
         c("")
@@ -954,7 +946,7 @@ def generate_c(path):
     for m in msgs:
         c("    case CVT_MSG_%s:" % m.member.upper())
         for i, sg in enumerate(m.signals):
-            ty = sig_c_type(sg)
+            ty = sg.type_name(C99)
             if sg.kind == "bool":
                 c("      a->u.%s.%s = in[%d] != 0.0;" % (m.member, sg.name, i))
             elif sg.kind == "enum":

@@ -2,7 +2,7 @@
 // The analytic Jacobian of a reduced-order plant at a state against the
 // dual-number Jacobian of the same right-hand side (docs/rom.md#jacobian),
 // and optionally against its central differences: shared by the plant's
-// tests (test_rom_core.cpp, test_rom_tension.cpp).
+// tests (test_rom_core.cpp, test_rom_tension.cpp, ...).
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -13,6 +13,15 @@
 #include "cvtplant/plant/cvt_rom.hpp"
 
 namespace rom_test {
+
+// Table 1 parameters with the built-in road load (docs/rom.md#road-load).
+inline cvt::RomParams road_load_params() {
+  cvt::RomParams p;
+  p.road_T0_Nm = 10.0;
+  p.road_cv_Nms_rad = 0.05;
+  p.road_ca_Nms2_rad2 = 0.002;
+  return p;
+}
 
 // A plant at the tests' torques (80 / 40 N m) and clamping force.
 template <std::uint32_t F>

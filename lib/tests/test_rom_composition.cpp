@@ -139,10 +139,7 @@ void check_full_jacobian(const cvt::RomParams& p, double w2, double x1, double r
 }  // namespace
 
 TEST_CASE("composition: analytic Jacobian of tension on the radial DOF equals dual numbers and central differences") {
-  cvt::RomParams p;
-  p.road_T0_Nm = 10.0;
-  p.road_cv_Nms_rad = 0.05;
-  p.road_ca_Nms2_rad2 = 0.002;
+  cvt::RomParams p = rom_test::road_load_params();
   p.wrap_tension_share = 0.4;  // the strands' stretch g rho in dT
   for (const auto& fr : {cvt::friction_presets::table2_case1<double>(), cvt::friction_presets::table2_case2<double>()}) {
     p.friction = fr;

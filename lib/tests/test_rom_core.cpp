@@ -33,14 +33,7 @@ cvt::RomParams oscillator_as_rom(const cvt::FrictionParams<double>& f) {
   return p;
 }
 
-// Table 1 parameters with the built-in road load (docs/rom.md#road-load).
-cvt::RomParams road_load_params() {
-  cvt::RomParams p;
-  p.road_T0_Nm = 10.0;
-  p.road_cv_Nms_rad = 0.05;
-  p.road_ca_Nms2_rad2 = 0.002;
-  return p;
-}
+using rom_test::road_load_params;
 
 // Driver at 150 rad/s, driven at omega2 (100 rad/s: no slip), strands
 // stretched, polygon phase off zero: every Jacobian entry is exercised.

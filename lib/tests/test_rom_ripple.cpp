@@ -152,10 +152,7 @@ void check_ripple_jacobian(const cvt::RomParams& p, const cvt::RomInitial& x0, d
 }  // namespace
 
 TEST_CASE("link ripple: analytic Jacobian equals the dual-number Jacobian and central differences") {
-  cvt::RomParams p;
-  p.road_T0_Nm = 10.0;
-  p.road_cv_Nms_rad = 0.05;
-  p.road_ca_Nms2_rad2 = 0.002;
+  cvt::RomParams p = rom_test::road_load_params();
   p.ripple_gain = 3.0;  // a large ripple, so its entries stand out
   cvt::RomInitial x0;
   x0.omega1_rad_s = 150.0;

@@ -289,10 +289,7 @@ void check_tension_jacobian(const cvt::RomParams& p, const cvt::RomInitial& x0, 
 }  // namespace
 
 TEST_CASE("tension: analytic Jacobian equals the dual-number Jacobian and central differences in every regime") {
-  cvt::RomParams p;  // Table 2 case 1
-  p.road_T0_Nm = 10.0;
-  p.road_cv_Nms_rad = 0.05;
-  p.road_ca_Nms2_rad2 = 0.002;
+  cvt::RomParams p = rom_test::road_load_params();  // Table 2 case 1
   cvt::RomInitial x0;
   x0.omega1_rad_s = 150.0;
   x0.x1_m = 0.02;

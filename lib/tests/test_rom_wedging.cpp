@@ -38,16 +38,21 @@ double driven_radius_by_length(const cvt::RomParams& p, double rho) {
   return b;
 }
 
-// A driving state with radial motion: driver 150 rad/s, lumps slipping a
-// little, chain moving inward at 2 cm/s.
-Rom::State moving_state(const Rom& rom) {
+// Driving: driver 150 rad/s, lumps slipping a little, strands stretched,
+// the chain 4 mm off its seat.
+cvt::RomInitial driving_initial() {
   cvt::RomInitial x0;
   x0.omega1_rad_s = 150.0;
   x0.omega2_rad_s = 99.95;
   x0.x1_m = 0.01;
   x0.x2_m = 0.012;
   x0.radius_offset_m = 0.004;
-  Rom::State x = rom.initial_state(x0);
+  return x0;
+}
+
+// A driving state with radial motion: the chain moving inward at 2 cm/s.
+Rom::State moving_state(const Rom& rom) {
+  Rom::State x = rom.initial_state(driving_initial());
   x(L::kRhoDot) = -0.02;
   x(L::kDeltaDot) = 0.001;
   return x;
@@ -211,14 +216,9 @@ TEST_CASE("wedging: analytic Jacobian equals the dual-number Jacobian for every 
     CAPTURE(static_cast<int>(fr.law));
     cvt::RomParams p;
     p.friction = fr;
-    cvt::RomInitial x0;
-    x0.omega1_rad_s = 150.0;
-    x0.omega2_rad_s = 99.95;
-    x0.x1_m = 0.01;
-    x0.x2_m = 0.012;
+    cvt::RomInitial x0 = driving_initial();
     x0.xd1_m_s = 0.003;
     x0.xd2_m_s = -0.002;
-    x0.radius_offset_m = 0.004;
     x0.phase_rad = 0.05;
     check_wedge_jacobian_against_duals<kWedge>(p, x0, -0.02, 0.0);
     check_wedge_jacobian_against_duals<kWedgeRoad>(p, x0, -0.02, 0.0);

@@ -42,6 +42,15 @@ inline std::vector<double> state_at(const MbdParams& p, double t, RunOptions o =
   return y;
 }
 
+// Seed case 2 on clamped sheaves, the driver's clamping ramped from 3.3 to
+// 4 kN over the first second: the clamped configuration the solver checks run.
+inline MbdParams clamped_case2() {
+  MbdParams p = seed_case(2);
+  p.sheaves = SheaveMode::clamped;
+  p.clamp1_N.points = {{0.0, 3300.0}, {1.0, 4000.0}};
+  return p;
+}
+
 inline double rel_diff(double a, double b) { return std::fabs(a - b) / std::max(std::fabs(a), std::fabs(b)); }
 
 // The seed's geometry, restated here from Table 1 so the checks do not lean

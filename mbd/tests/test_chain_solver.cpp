@@ -109,9 +109,7 @@ TEST_CASE("chain solver: fixed sheaves, seed case 1, links entering, leaving and
 }
 
 TEST_CASE("chain solver: clamped sheaves, seed case 2, and the hold of a start at speed") {
-  MbdParams p = seed_case(2);
-  p.sheaves = SheaveMode::clamped;
-  p.clamp1_N.points = {{0.0, 3300.0}, {1.0, 4000.0}};
+  MbdParams p = cvt::mbd::testing::clamped_case2();
   check_solves(p, 0.05);
   p.start.active = true;
   p.start.omega1_rad_s = 20.0;
@@ -122,8 +120,6 @@ TEST_CASE("chain solver: clamped sheaves, seed case 2, and the hold of a start a
 
 TEST_CASE("chain solver: the same run as with KLU, to the tolerance's size") {
   check_runs_agree(seed_case(1), 0.1, 1e-5);
-  MbdParams p = seed_case(2);
-  p.sheaves = SheaveMode::clamped;
-  p.clamp1_N.points = {{0.0, 3300.0}, {1.0, 4000.0}};
+  MbdParams p = cvt::mbd::testing::clamped_case2();
   check_runs_agree(p, 0.1, 1e-5);
 }

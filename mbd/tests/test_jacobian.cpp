@@ -62,10 +62,7 @@ TEST_CASE("jacobian: fixed sheaves, seed case 1, links entering, leaving and sli
 }
 
 TEST_CASE("jacobian: clamped sheaves, seed case 2 (Stribeck)") {
-  MbdParams p = seed_case(2);
-  p.sheaves = SheaveMode::clamped;
-  p.clamp1_N.points = {{0.0, 3300.0}, {1.0, 4000.0}};
-  check_jacobian(p, 0.05);
+  check_jacobian(cvt::mbd::testing::clamped_case2(), 0.05);
 }
 
 TEST_CASE("jacobian: road load and torque profiles, running and in the hold of a start at speed") {

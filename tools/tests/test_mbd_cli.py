@@ -155,27 +155,23 @@ class BadInput(unittest.TestCase):
         self.bad("--case", "1", "--sheaves", "clamped", "--clamp-N", "10", needle="--clamp-N")
         self.bad("--case", "1", "--sheaves", "clamped", "--clamp-N", "0:3000,1", needle="t:value")
 
+    def bad_values(self, option, needles):
+        """Seed case 1 with `option` at each value of `needles`: refused, naming the value's needle."""
+        for value, needle in needles.items():
+            self.bad("--case", "1", option, value, needle=needle)
+
     def test_torque_profiles(self):
-        self.bad("--case", "1", "--tau-in", "0:20,0.5:x", needle="--tau-in")
-        self.bad("--case", "1", "--tau-in", "0:20,0:120", needle="times must increase")
-        self.bad("--case", "1", "--tau-load", "0:50,1:1e4", needle="--tau-load")
-        self.bad("--case", "1", "--tau-load", "0:50,1:nan", needle="--tau-load")
-        self.bad("--case", "1", "--tau-in", "-0.5:20", needle=">= 0")
+        self.bad_values("--tau-in", {"0:20,0.5:x": "--tau-in", "0:20,0:120": "times must increase", "-0.5:20": ">= 0"})
+        self.bad_values("--tau-load", {"0:50,1:1e4": "--tau-load", "0:50,1:nan": "--tau-load"})
 
     def test_road_load(self):
-        self.bad("--case", "1", "--road-load", "10,0.05", needle="T0,cv,ca")
-        self.bad("--case", "1", "--road-load", "10,0.05,0.002,1,2", needle="T0,cv,ca")
-        self.bad("--case", "1", "--road-load", "-1,0.05,0.002", needle="--road-load T0")
-        self.bad("--case", "1", "--road-load", "10,nan,0.002", needle="--road-load")
-        self.bad("--case", "1", "--road-load", "10,0.05,0.002,0", needle="w_eps")
-        self.bad("--case", "1", "--road-load", "10,0.05,x", needle="--road-load")
+        self.bad_values("--road-load", {"10,0.05": "T0,cv,ca", "10,0.05,0.002,1,2": "T0,cv,ca",
+                                        "-1,0.05,0.002": "--road-load T0", "10,nan,0.002": "--road-load",
+                                        "10,0.05,0.002,0": "w_eps", "10,0.05,x": "--road-load"})
 
     def test_start_at_speed(self):
-        self.bad("--case", "1", "--omega0", "150", needle="expected 2")
-        self.bad("--case", "1", "--omega0", "150,0", needle="(0, 1000]")
-        self.bad("--case", "1", "--omega0", "-150,100", needle="(0, 1000]")
-        self.bad("--case", "1", "--omega0", "150,inf", needle="--omega0")
-        self.bad("--case", "1", "--omega0", "2000,100", needle="(0, 1000]")
+        self.bad_values("--omega0", {"150": "expected 2", "150,0": "(0, 1000]", "-150,100": "(0, 1000]",
+                                     "150,inf": "--omega0", "2000,100": "(0, 1000]"})
 
     def test_work_and_memory_caps(self):
         self.bad("--case", "1", "--method", "rk4", "--t-end", "10", "--max-steps", "1000", needle="--max-steps")

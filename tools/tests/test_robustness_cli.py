@@ -38,6 +38,11 @@ class Case(unittest.TestCase):
         self.assertRegex(lines[0], pattern)
         return lines[0]
 
+    def refused_values(self, command, patterns):
+        """`command` with each "option value" of `patterns` added: a usage error matching its pattern."""
+        for option_value, pattern in patterns.items():
+            self.usage_error(command + option_value.split(), pattern)
+
     def run_failure(self, args, pattern, sub=None, **kw):
         """Exit 1 and a `cvtplant SUB: failed: ...` line on stderr matching pattern."""
         r = run(*args, **kw)
@@ -93,11 +98,10 @@ class NumericOptions(Case):
                          r"needs about 61036 MB .*cap of 1024 MB; raise it with --max-memory-mb")
 
     def test_lyapunov_nan_negative(self):
-        self.usage_error(["lyapunov", "--scene", "lorenz", "--t-end", "nan"], r"--t-end: 'nan' is not a finite number")
-        self.usage_error(["lyapunov", "--scene", "lorenz", "--t-end", "-5"], r"--t-end: '-5' is outside \(0, 1e\+09\]")
-        self.usage_error(["lyapunov", "--scene", "lorenz", "--dt", "-0.01"], r"--dt: '-0.01' is outside")
-        self.usage_error(["lyapunov", "--scene", "lorenz", "--t-transient", "-1"], r"--t-transient: '-1' is outside")
-        self.usage_error(["lyapunov", "--scene", "lorenz", "--batches", "1"], r"--batches: '1' is outside 2\.\.1000")
+        self.refused_values(["lyapunov", "--scene", "lorenz"], {
+            "--t-end nan": r"--t-end: 'nan' is not a finite number", "--t-end -5": r"--t-end: '-5' is outside \(0, 1e\+09\]",
+            "--dt -0.01": r"--dt: '-0.01' is outside", "--t-transient -1": r"--t-transient: '-1' is outside",
+            "--batches 1": r"--batches: '1' is outside 2\.\.1000"})
 
     def test_lyapunov_dt_1e_300(self):
         # Was a signed overflow of the step count (UBSan) before any check.
@@ -115,9 +119,9 @@ class NumericOptions(Case):
                          r"needs .* steps .*above the cap of 500; raise it with --max-steps")
 
     def test_integer_options_strict(self):
-        self.usage_error(["run", "--scene", "seed-case1", "--substeps", "2.5"], r"--substeps: '2.5' is not an integer")
-        self.usage_error(["run", "--scene", "seed-case1", "--substeps", "0"], r"--substeps: '0' is outside 1\.\.10000")
-        self.usage_error(["run", "--scene", "seed-case1", "--every", "-3"], r"--every: '-3' is outside")
+        self.refused_values(["run", "--scene", "seed-case1"], {
+            "--substeps 2.5": r"--substeps: '2.5' is not an integer", "--substeps 0": r"--substeps: '0' is outside 1\.\.10000",
+            "--every -3": r"--every: '-3' is outside"})
         self.usage_error(["oscillator", "--t-end", "1", "--every", "1e3"], r"--every: '1e3' is not an integer")
 
     def test_run_and_oscillator_ranges(self):
@@ -208,6 +212,14 @@ class AnalyzeOptions(Case):
 
 
 class SceneFiles(Case):
+    def runs_until(self, d, inputs, flags, pattern):
+        """A 0.1 s seed-case1 scene with `inputs` under [inputs]: it runs, and `flags` make it a
+        usage error matching `pattern`. Returns the scene's path."""
+        p = write(d, "ok.toml", 'base = "seed-case1"\nt_end_s = 0.1\n[inputs]\n' + inputs)
+        self.assertEqual(run("run", "--scene", p, "--json").returncode, 0)
+        self.usage_error(["run", "--scene", p] + flags, pattern)
+        return p
+
     def test_table_negative_time(self):
         with tempfile.TemporaryDirectory() as d:
             p = write(d, "neg.toml", 'base = "seed-case1"\n[inputs]\n'
@@ -220,10 +232,8 @@ class SceneFiles(Case):
                       'tau_in = { kind = "sine", offset = 100.0, amplitude = 5.0, freq_hz = 1e300 }\n')
             self.usage_error(["run", "--scene", p], r":3: inputs.tau_in: sine frequency must be at most half the frame rate")
             # Half the frame rate is the limit: 500 Hz at 1 ms is accepted, 501 Hz is not.
-            ok = write(d, "ok.toml", 'base = "seed-case1"\nt_end_s = 0.1\n[inputs]\n'
-                       'tau_in = { kind = "sine", offset = 100.0, amplitude = 5.0, freq_hz = 500.0 }\n')
-            self.assertEqual(run("run", "--scene", ok, "--json").returncode, 0)
-            self.usage_error(["run", "--scene", ok, "--dt", "2e-3"], r"tau_in: sine frequency must be at most half")
+            self.runs_until(d, 'tau_in = { kind = "sine", offset = 100.0, amplitude = 5.0, freq_hz = 500.0 }\n',
+                            ["--dt", "2e-3"], r"tau_in: sine frequency must be at most half")
 
     def test_fixed_point_clamp_beyond_q16(self):
         with tempfile.TemporaryDirectory() as d:
@@ -231,10 +241,8 @@ class SceneFiles(Case):
                       'clamp = { kind = "ramp", from = 32768.0, to = 40000.0, t0_s = 0.0, t1_s = 1.0 }\n')
             self.usage_error(["run", "--scene", p], r"clamp: the profile goes beyond the fixed-point range")
             # The same scene is fine in double, and refused when --scalar chooses fixed.
-            dbl = write(d, "d.toml", 'base = "seed-case1"\nt_end_s = 0.1\n[inputs]\n'
-                        'clamp = { kind = "ramp", from = 32768.0, to = 40000.0, t0_s = 0.0, t1_s = 1.0 }\n')
-            self.assertEqual(run("run", "--scene", dbl, "--json").returncode, 0)
-            self.usage_error(["run", "--scene", dbl, "--scalar", "fixed"], r"clamp: the profile goes beyond the fixed-point")
+            dbl = self.runs_until(d, 'clamp = { kind = "ramp", from = 32768.0, to = 40000.0, t0_s = 0.0, t1_s = 1.0 }\n',
+                                  ["--scalar", "fixed"], r"clamp: the profile goes beyond the fixed-point")
             self.usage_error(["rom-accuracy", "--scene", dbl, "--scalar", "fixed"],
                              r"--scalar fixed: clamp: the profile goes beyond the fixed-point range")
             # 32767 N fits.

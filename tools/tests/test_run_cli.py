@@ -300,69 +300,62 @@ class BadInput(unittest.TestCase):
         self.assertEqual(run("run", "--scene", "tip-in", "--dt", "-1").returncode, 2)
         self.assertEqual(run("run", "--scene", "tip-in", "--substeps", "0").returncode, 2)
 
-    def test_syntax_error_names_file_and_line(self):
+    def assert_scenes_refused(self, cases):
+        """Each (scene file text, extra flags, parts) refused with one line holding the parts; a part
+        ":N:" is the file's line N, named after the file's path."""
         with tempfile.TemporaryDirectory() as d:
-            p = write(d, "s.toml", 'base = "tip-in"\n\nt_end_s = = 3\n')
-            self.assert_usage(run("run", "--scene", p), p + ":3:", "syntax")
+            for i, (text, flags, parts) in enumerate(cases):
+                p = write(d, "s%d.toml" % i, text)
+                self.assert_usage(run("run", "--scene", p, *flags), *[p + x if x.startswith(":") else x for x in parts])
+
+    def test_syntax_error_names_file_and_line(self):
+        self.assert_scenes_refused([('base = "tip-in"\n\nt_end_s = = 3\n', (), (":3:", "syntax"))])
 
     def test_unknown_field_names_file_line_field(self):
-        with tempfile.TemporaryDirectory() as d:
-            p = write(d, "s.toml", 'base = "tip-in"\n[params]\nr1_m = 0.07\nJ3_kgm2 = 1.0\n')
-            self.assert_usage(run("run", "--scene", p), p + ":4:", "params.J3_kgm2", "unknown field")
+        self.assert_scenes_refused([('base = "tip-in"\n[params]\nr1_m = 0.07\nJ3_kgm2 = 1.0\n', (),
+                                     (":4:", "params.J3_kgm2", "unknown field"))])
 
     def test_out_of_range_names_file_line_field(self):
-        with tempfile.TemporaryDirectory() as d:
-            p = write(d, "s.toml", 'base = "tip-in"\n[params]\nr1_m = 0.07\nJ1_kgm2 = -1.0\n')
-            self.assert_usage(run("run", "--scene", p), p + ":4:", "params.J1_kgm2", "> 0")
-            p = write(d, "f.toml", 'base = "tip-in"\n[friction]\nmu0 = 5.0\n')
-            self.assert_usage(run("run", "--scene", p), p + ":3:", "friction.mu0")
-            p = write(d, "c.toml", 'base = "tip-in"\n[inputs]\n\nclamp = -3.0\n')
-            self.assert_usage(run("run", "--scene", p), p + ":4:", "clamp", ">= 0")
+        self.assert_scenes_refused([
+            ('base = "tip-in"\n[params]\nr1_m = 0.07\nJ1_kgm2 = -1.0\n', (), (":4:", "params.J1_kgm2", "> 0")),
+            ('base = "tip-in"\n[friction]\nmu0 = 5.0\n', (), (":3:", "friction.mu0")),
+            ('base = "tip-in"\n[inputs]\n\nclamp = -3.0\n', (), (":4:", "clamp", ">= 0"))])
 
     def test_wrong_type_and_unknown_names(self):
-        with tempfile.TemporaryDirectory() as d:
-            p = write(d, "t.toml", 'base = "tip-in"\nt_end_s = "long"\n')
-            self.assert_usage(run("run", "--scene", p), p + ":2:", "t_end_s", "number")
-            p = write(d, "n.toml", 'features = ["axial", "warp_drive"]\n')
-            self.assert_usage(run("run", "--scene", p), p + ":1:", "features", "warp_drive")
-            p = write(d, "k.toml", 'base = "tip-in"\n[inputs]\ntau_in = { kind = "square", value = 1 }\n')
-            self.assert_usage(run("run", "--scene", p), p + ":3:", "kind")
+        self.assert_scenes_refused([
+            ('base = "tip-in"\nt_end_s = "long"\n', (), (":2:", "t_end_s", "number")),
+            ('features = ["axial", "warp_drive"]\n', (), (":1:", "features", "warp_drive")),
+            ('base = "tip-in"\n[inputs]\ntau_in = { kind = "square", value = 1 }\n', (), (":3:", "kind"))])
 
     def test_energy_ledger_key(self):
-        with tempfile.TemporaryDirectory() as d:
-            p = write(d, "b.toml", 'base = "seed-case1"\nenergy_ledger = "off"\n')
-            self.assert_usage(run("run", "--scene", p), p + ":2:", "energy_ledger", "true or false")
-            p = write(d, "e.toml", 'base = "seed-case1"\nenergy_ledger = false\nlog = ["torques", "energy"]\n')
-            self.assert_usage(run("run", "--scene", p), "log", "energy_ledger")
+        self.assert_scenes_refused([
+            ('base = "seed-case1"\nenergy_ledger = "off"\n', (), (":2:", "energy_ledger", "true or false")),
+            ('base = "seed-case1"\nenergy_ledger = false\nlog = ["torques", "energy"]\n', (), ("log", "energy_ledger"))])
 
     def test_wedging_needs_axial_and_floating_point(self):
         shift = os.path.join(SCENES, "ratio-shift.toml")
         self.assert_usage(run("run", "--scene", shift, "--scalar", "fixed"), "scalar", "double or float")
-        with tempfile.TemporaryDirectory() as d:
-            p = write(d, "w.toml", 'base = "tip-in"\nfeatures = ["wedging"]\n')
-            self.assert_usage(run("run", "--scene", p), p + ":2:", "features", "axial")
-            p = write(d, "l.toml", 'base = "tip-in"\nfeatures = ["axial", "wedging"]\n[params]\nbeta0_deg = 76\n')
-            self.assert_usage(run("run", "--scene", p), p + ":4:", "beta0_deg", "self-locking")
+        self.assert_scenes_refused([
+            ('base = "tip-in"\nfeatures = ["wedging"]\n', (), (":2:", "features", "axial")),
+            ('base = "tip-in"\nfeatures = ["axial", "wedging"]\n[params]\nbeta0_deg = 76\n', (),
+             (":4:", "beta0_deg", "self-locking"))])
 
     def test_tension_keys_and_refusals(self):
-        # (file text after the base scene, extra flags, the parts the one-line error names)
-        tension = 'features = ["tension"]\n[params]\n'
+        # (file text, extra flags, the parts the one-line error names)
+        tension = 'base = "seed-case1"\nfeatures = ["tension"]\n[params]\n'
         cases = [
             (tension + "creep_gain = -1\n", (), (":4:", "params.creep_gain", "[0, 10]")),
             (tension + "chain_mass_kg_m = nan\n", (), (":4:", "params.chain_mass_kg_m", "finite")),
             (tension + "wrap_excess_share = 0.7\n", (), (":4:", "params.wrap_excess_share")),
             (tension + 'fixed_sheaves = "yes"\n', (), (":4:", "params.fixed_sheaves", "true or false")),
-            ('features = ["axial", "tension"]\n[params]\nfixed_sheaves = true\n', (),
+            ('base = "seed-case1"\nfeatures = ["axial", "tension"]\n[params]\nfixed_sheaves = true\n', (),
              (":4:", "params.fixed_sheaves", "axial")),
-            ('features = ["axial", "wedging", "tension"]\n[params]\nfixed_sheaves = true\n', (),
+            ('base = "seed-case1"\nfeatures = ["axial", "wedging", "tension"]\n[params]\nfixed_sheaves = true\n', (),
              (":4:", "params.fixed_sheaves", "axial")),
-            ('features = ["axial"]\nlog = ["torques", "tension"]\n', (), (":3:", "log", "tension feature")),
+            ('base = "seed-case1"\nfeatures = ["axial"]\nlog = ["torques", "tension"]\n', (), (":3:", "log", "tension feature")),
             (tension + "chain_stiffness_N = 4e7\n", ("--scalar", "fixed"), ("chain_stiffness_N", "fixed-point range")),
         ]
-        with tempfile.TemporaryDirectory() as d:
-            for i, (text, flags, parts) in enumerate(cases):
-                p = write(d, "t%d.toml" % i, 'base = "seed-case1"\n' + text)
-                self.assert_usage(run("run", "--scene", p, *flags), *[p + x if x.startswith(":") else x for x in parts])
+        self.assert_scenes_refused(cases)
         self.assert_usage(run("run", "--scene", "seed-case1", "--solver", "adaptive"), "--solver adaptive", "tension")
 
     def test_rom_accuracy_refuses_a_plant_the_scalar_lacks(self):

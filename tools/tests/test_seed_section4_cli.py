@@ -46,6 +46,14 @@ def check(cond, what):
         failures.append(what)
 
 
+def exit_status():
+    """1 after any failed check (their count printed), else 0."""
+    if failures:
+        print("%d check(s) failed" % len(failures))
+        return 1
+    return 0
+
+
 def png_valid(path):
     """Signature, CRC of every chunk, IHDR first, IEND last, IDAT size."""
     try:
@@ -160,10 +168,7 @@ def main():
     os.makedirs(tmp, exist_ok=True)
     for scene in ("seed-case1", "seed-case2"):
         run_scene(binary, tmp, scene, 10.0)
-    if failures:
-        print("%d check(s) failed" % len(failures))
-        return 1
-    return 0
+    return exit_status()
 
 
 if __name__ == "__main__":

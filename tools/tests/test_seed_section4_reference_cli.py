@@ -26,15 +26,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from test_seed_section4_cli import png_valid  # noqa: E402
-
-failures = []
-
-
-def check(cond, what):
-    print(("ok: " if cond else "FAIL: ") + what)
-    if not cond:
-        failures.append(what)
+from test_seed_section4_cli import check, exit_status, png_valid  # noqa: E402
 
 
 def bad_input(binary, tmp):
@@ -141,10 +133,7 @@ def main():
     top = fax["lines"]["lines_Hz"][0]
     check(abs(top - lr["driver_Hz"]) <= 2 * fax["lines"]["resolution_Hz"],
           "F_ax1's strongest line %.3f Hz is the link-passing rate %.3f Hz" % (top, lr["driver_Hz"]))
-    if failures:
-        print("%d check(s) failed" % len(failures))
-        return 1
-    return 0
+    return exit_status()
 
 
 if __name__ == "__main__":

@@ -12,6 +12,8 @@ import sys
 import tempfile
 import unittest
 
+from cli_checks import assert_usage_error, quiet_json
+
 CLI = sys.argv.pop(1) if len(sys.argv) > 1 else "cvtplant"
 SHORT = ["--t-end", "0.2"]
 
@@ -35,10 +37,7 @@ class Validate(unittest.TestCase):
         cls.tmp.cleanup()
 
     def test_json_rows_and_files(self):
-        r = self.first
-        self.assertEqual(r.returncode, 0, r.stderr)
-        self.assertEqual(r.stderr, "")  # piped: no progress bar
-        j = json.loads(r.stdout)
+        j = quiet_json(self, self.first)
         (s,) = j["scenes"]
         self.assertEqual(s["status"], "ok")
         self.assertFalse(s["reference"]["from_cache"])
@@ -305,10 +304,7 @@ class DefaultOutputDir(unittest.TestCase):
 
 class BadInput(unittest.TestCase):
     def check(self, args, needle):
-        r = run(*args)
-        self.assertEqual(r.returncode, 2, (args, r.stdout, r.stderr))
-        self.assertIn(needle, r.stderr)
-        self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
+        assert_usage_error(self, run(*args), needle, args)
 
     def test_bad_options(self):
         with tempfile.TemporaryDirectory() as d:

@@ -15,6 +15,8 @@ import sys
 import tempfile
 import unittest
 
+from cli_checks import assert_usage_error, quiet_json
+
 CLI = sys.argv.pop(1) if len(sys.argv) > 1 else "cvtplant"
 CI = ["validate", "--suite", "ci", "--no-maps", "--uncertainty", "none", "--no-figures"]
 
@@ -42,10 +44,7 @@ class CiSuite(unittest.TestCase):
         cls.tmp.cleanup()
 
     def test_json_and_files(self):
-        r = self.first
-        self.assertEqual(r.returncode, 0, r.stderr)
-        self.assertEqual(r.stderr, "")  # piped: no progress bar
-        j = json.loads(r.stdout)
+        j = quiet_json(self, self.first)
         self.assertEqual(j["suite"], "ci")
         self.assertEqual(j["set"], "production")
         self.assertEqual(j["plant_scene"], "ratio-control")
@@ -82,10 +81,7 @@ class CiSuite(unittest.TestCase):
             params = os.path.join(d, "suite-ci", name + ".csv")
             with open(params, "w") as f:
                 f.write("[params]\nk1_N_m = 2500.0\n")
-            r = run(*CI, "--params", params, "--out-dir", d)
-            self.assertEqual(r.returncode, 2, r.stderr)
-            self.assertIn("is the input of --params", r.stderr)
-            self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
+            assert_usage_error(self, run(*CI, "--params", params, "--out-dir", d), "is the input of --params")
             with open(params) as f:
                 self.assertEqual(f.read(), "[params]\nk1_N_m = 2500.0\n")
             self.assertFalse(os.path.exists(os.path.join(d, "reference-cache")))
@@ -147,10 +143,7 @@ class CiSuite(unittest.TestCase):
 
 class SuiteBadInput(unittest.TestCase):
     def check(self, args, needle):
-        r = run(*args)
-        self.assertEqual(r.returncode, 2, (args, r.stdout, r.stderr))
-        self.assertIn(needle, r.stderr)
-        self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
+        assert_usage_error(self, run(*args), needle, args)
 
     def test_bad_options(self):
         with tempfile.TemporaryDirectory() as d:

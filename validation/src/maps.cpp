@@ -250,8 +250,7 @@ Maps make_maps(const cvt::Scene& plant, const ReferenceConfig& c, const std::str
       out.shift.push_back(cell);
     }
   for (const double clamp : kTractionClamps_N) {
-    const Manoeuvre m = traction_manoeuvre(clamp);
-    const std::size_t i = at.at(m.name);
+    const std::size_t i = at.at(traction_manoeuvre(clamp).name);
     const Series& r = refs[i].series;
     const Series p = plant_of(i, nullptr);
     const double r1 = r1_of(kTractionRatio);
@@ -283,8 +282,7 @@ Maps make_maps(const cvt::Scene& plant, const ReferenceConfig& c, const std::str
     }
   }
   for (const double torque : kOnsetTorques_Nm) {
-    const Manoeuvre m = onset_manoeuvre(torque);
-    const std::size_t i = at.at(m.name);
+    const std::size_t i = at.at(onset_manoeuvre(torque).name);
     const Series& r = refs[i].series;
     const Series p = plant_of(i, nullptr);
     OnsetPoint op;
@@ -299,48 +297,45 @@ Maps make_maps(const cvt::Scene& plant, const ReferenceConfig& c, const std::str
 
 namespace {
 
+// One map's table dir/name: the header line, then write_row(file, row) for each row.
+template <class Rows, class WriteRow>
+void write_csv(const std::string& dir, const char* name, const char* header, const Rows& rows, WriteRow write_row,
+               std::vector<std::string>& paths) {
+  const std::string path = dir + "/" + name;
+  auto f = cvt::analysis::open_text_file(path);
+  f << header;
+  for (const auto& row : rows) write_row(f, row);
+  paths.push_back(path);
+}
+
 void write_csvs(const Maps& m, const std::string& dir, std::vector<std::string>& paths) {
-  {
-    const std::string path = dir + "/thrust-ratio.csv";
-    auto f = cvt::analysis::open_text_file(path);
-    f << "ratio,torque_Nm,clamp2_N,torque_ratio,kappa_ref,kappa_plant,error,ratio_ref,ratio_plant,drift_ref_per_s\n";
-    for (const auto& c : m.thrust)
-      f << c.ratio << ',' << c.torque_Nm << ',' << c.clamp2_N << ',' << c.torque_ratio << ',' << c.kappa_ref << ','
-        << c.kappa_plant << ',' << c.error() << ',' << c.ratio_ref << ',' << c.ratio_plant << ','
-        << c.drift_ref_per_s << '\n';
-    paths.push_back(path);
-  }
-  {
-    const std::string path = dir + "/shift-rate.csv";
-    auto f = cvt::analysis::open_text_file(path);
-    f << "omega1_rad_s,ratio,torque_Nm,clamp2_N,delta_ln_F1_F2,rate_ref_per_s,rate_plant_per_s,slope_ref,slope_plant,"
-         "cmm_coefficient_ref,cmm_coefficient_plant,r2_ref,r2_plant\n";
-    for (const auto& c : m.shift)
-      for (std::size_t i = 0; i < c.delta.size(); ++i)
-        f << c.omega1_rad_s << ',' << c.ratio << ',' << c.torque_Nm << ',' << c.clamp2_N << ',' << c.delta[i] << ','
-          << c.rate_ref[i] << ',' << c.rate_plant[i] << ',' << c.slope_ref << ',' << c.slope_plant << ','
-          << c.slope_ref / c.omega1_rad_s << ',' << c.slope_plant / c.omega1_rad_s << ',' << c.r2_ref << ','
-          << c.r2_plant << '\n';
-    paths.push_back(path);
-  }
-  {
-    const std::string path = dir + "/traction.csv";
-    auto f = cvt::analysis::open_text_file(path);
-    f << "clamp2_N,torque_cmd_Nm,torque_ratio,torque_ref_Nm,slip_ref,torque_plant_Nm,slip_plant\n";
-    for (const auto& p : m.traction)
-      f << p.clamp2_N << ',' << p.torque_cmd_Nm << ',' << p.torque_ratio << ',' << p.torque_ref_Nm << ','
-        << p.slip_ref << ',' << p.torque_plant_Nm << ',' << p.slip_plant << '\n';
-    paths.push_back(path);
-  }
-  {
-    const std::string path = dir + "/gross-slip-onset.csv";
-    auto f = cvt::analysis::open_text_file(path);
-    f << "torque_Nm,clamp_ref_N,clamp_plant_N,clamp_closed_form_N,error\n";
-    for (const auto& o : m.onset)
-      f << o.torque_Nm << ',' << o.clamp_ref_N << ',' << o.clamp_plant_N << ',' << o.clamp_closed_N << ','
-        << o.error() << '\n';
-    paths.push_back(path);
-  }
+  write_csv(dir, "thrust-ratio.csv",
+            "ratio,torque_Nm,clamp2_N,torque_ratio,kappa_ref,kappa_plant,error,ratio_ref,ratio_plant,drift_ref_per_s\n",
+            m.thrust, [](auto& f, const auto& c) {
+              f << c.ratio << ',' << c.torque_Nm << ',' << c.clamp2_N << ',' << c.torque_ratio << ',' << c.kappa_ref
+                << ',' << c.kappa_plant << ',' << c.error() << ',' << c.ratio_ref << ',' << c.ratio_plant << ','
+                << c.drift_ref_per_s << '\n';
+            }, paths);
+  write_csv(dir, "shift-rate.csv",
+            "omega1_rad_s,ratio,torque_Nm,clamp2_N,delta_ln_F1_F2,rate_ref_per_s,rate_plant_per_s,slope_ref,slope_plant,"
+            "cmm_coefficient_ref,cmm_coefficient_plant,r2_ref,r2_plant\n",
+            m.shift, [](auto& f, const auto& c) {
+              for (std::size_t i = 0; i < c.delta.size(); ++i)
+                f << c.omega1_rad_s << ',' << c.ratio << ',' << c.torque_Nm << ',' << c.clamp2_N << ',' << c.delta[i]
+                  << ',' << c.rate_ref[i] << ',' << c.rate_plant[i] << ',' << c.slope_ref << ',' << c.slope_plant << ','
+                  << c.slope_ref / c.omega1_rad_s << ',' << c.slope_plant / c.omega1_rad_s << ',' << c.r2_ref << ','
+                  << c.r2_plant << '\n';
+            }, paths);
+  write_csv(dir, "traction.csv", "clamp2_N,torque_cmd_Nm,torque_ratio,torque_ref_Nm,slip_ref,torque_plant_Nm,slip_plant\n",
+            m.traction, [](auto& f, const auto& p) {
+              f << p.clamp2_N << ',' << p.torque_cmd_Nm << ',' << p.torque_ratio << ',' << p.torque_ref_Nm << ','
+                << p.slip_ref << ',' << p.torque_plant_Nm << ',' << p.slip_plant << '\n';
+            }, paths);
+  write_csv(dir, "gross-slip-onset.csv", "torque_Nm,clamp_ref_N,clamp_plant_N,clamp_closed_form_N,error\n", m.onset,
+            [](auto& f, const auto& o) {
+              f << o.torque_Nm << ',' << o.clamp_ref_N << ',' << o.clamp_plant_N << ',' << o.clamp_closed_N << ','
+                << o.error() << '\n';
+            }, paths);
 }
 
 // One gnuplot script per map next to its CSV.
@@ -355,55 +350,52 @@ void draw(const std::string& dir, const std::string& name, const std::string& bo
   paths.push_back(png);
 }
 
+// A gnuplot plot command grown one group of curves at a time: `add` formats
+// a group with printf, its first %s the separator from the group before.
+struct PlotCommand {
+  std::string text;  // the title, labels and "plot "; then the groups
+  int groups = 0;
+  int colour() const { return groups + 1; }  // the next group's line colour
+  template <class... A>
+  void add(const char* f, A... a) {
+    const char* sep = groups++ > 0 ? ", " : "";
+    std::string b(static_cast<std::size_t>(std::snprintf(nullptr, 0, f, sep, a...)), '\0');
+    std::snprintf(b.data(), b.size() + 1, f, sep, a...);
+    text += b;
+  }
+};
+
 void write_figures(const Maps&, const std::string& dir, std::vector<std::string>& paths) {
-  std::string body = "set title 'Thrust-ratio map: F1/F2 that holds the ratio, reference (points) and plant "
-                     "(lines)'\nset xlabel 'geometric ratio r2/r1 [-]'\nset ylabel 'kappa = F1/F2 [-]'\nplot ";
-  int k = 0;
-  for (const double torque : kMapTorques_Nm) {
-    char b[512];
-    std::snprintf(b, sizeof b,
-                  "%s'%s/thrust-ratio.csv' skip 1 using ($2==%g?$1:1/0):5 with points pt 7 lc %d title 'reference %g N m', "
-                  "'%s/thrust-ratio.csv' skip 1 using ($2==%g?$1:1/0):6 with lines lw 2 lc %d title 'plant %g N m'",
-                  k > 0 ? ", " : "", dir.c_str(), torque, k + 1, torque, dir.c_str(), torque, k + 1, torque);
-    body += b;
-    ++k;
-  }
-  draw(dir, "thrust-ratio", body + "\n", paths);
-  body = "set title 'Shift rate after a step of ln(F1/F2) from the hold: reference (points), plant (lines)'\n"
-         "set xlabel 'delta ln(F1/F2) [-]'\nset ylabel 'd(r2/r1)/dt per primary speed [1/rad]'\nplot ";
-  k = 0;
+  PlotCommand thrust{"set title 'Thrust-ratio map: F1/F2 that holds the ratio, reference (points) and plant "
+                     "(lines)'\nset xlabel 'geometric ratio r2/r1 [-]'\nset ylabel 'kappa = F1/F2 [-]'\nplot "};
+  for (const double torque : kMapTorques_Nm)
+    thrust.add("%s'%s/thrust-ratio.csv' skip 1 using ($2==%g?$1:1/0):5 with points pt 7 lc %d title 'reference %g N m', "
+               "'%s/thrust-ratio.csv' skip 1 using ($2==%g?$1:1/0):6 with lines lw 2 lc %d title 'plant %g N m'",
+               dir.c_str(), torque, thrust.colour(), torque, dir.c_str(), torque, thrust.colour(), torque);
+  draw(dir, "thrust-ratio", thrust.text + "\n", paths);
+  PlotCommand shift{"set title 'Shift rate after a step of ln(F1/F2) from the hold: reference (points), plant (lines)'\n"
+                    "set xlabel 'delta ln(F1/F2) [-]'\nset ylabel 'd(r2/r1)/dt per primary speed [1/rad]'\nplot "};
   for (const double omega1 : kShiftOmega1_rad_s)
-    for (const double ratio : kShiftRatios) {
-      char b[640];
-      std::snprintf(b, sizeof b,
-                    "%s'%s/shift-rate.csv' skip 1 using (($1==%g&&$2==%g)?$5:1/0):($6/$1) with linespoints dt 3 pt 7 lc %d "
-                    "title 'ref. %g rad/s, %g', '%s/shift-rate.csv' skip 1 using (($1==%g&&$2==%g)?$5:1/0):($7/$1) with "
-                    "lines lw 2 lc %d title 'plant %g rad/s, %g'",
-                    k > 0 ? ", " : "", dir.c_str(), omega1, ratio, k + 1, omega1, ratio, dir.c_str(), omega1, ratio,
-                    k + 1, omega1, ratio);
-      body += b;
-      ++k;
-    }
-  draw(dir, "shift-rate", body + "\n", paths);
-  body = "set title 'Traction: transmitted torque against the driver slip, reference (points), plant (lines)'\n"
-         "set xlabel 'driver slip (v1 - v_chain)/v1 [%]'\nset ylabel 'torque on the driver [N m]'\nplot ";
-  k = 0;
-  for (const double clamp : kTractionClamps_N) {
-    char b[512];
-    std::snprintf(b, sizeof b,
-                  "%s'%s/traction.csv' skip 1 using ($1==%g?100*$5:1/0):4 with linespoints dt 3 pt 7 lc %d title 'ref. %g kN', "
-                  "'%s/traction.csv' skip 1 using ($1==%g?100*$7:1/0):6 with linespoints lw 2 pt 4 lc %d title 'plant %g kN'",
-                  k > 0 ? ", " : "", dir.c_str(), clamp, k + 1, clamp / 1000, dir.c_str(), clamp, k + 1, clamp / 1000);
-    body += b;
-    ++k;
-  }
-  draw(dir, "traction", body + "\n", paths);
-  body = "set title 'Clamping at the onset of gross slip'\nset xlabel 'input torque [N m]'\n"
+    for (const double ratio : kShiftRatios)
+      shift.add("%s'%s/shift-rate.csv' skip 1 using (($1==%g&&$2==%g)?$5:1/0):($6/$1) with linespoints dt 3 pt 7 lc %d "
+                "title 'ref. %g rad/s, %g', '%s/shift-rate.csv' skip 1 using (($1==%g&&$2==%g)?$5:1/0):($7/$1) with "
+                "lines lw 2 lc %d title 'plant %g rad/s, %g'",
+                dir.c_str(), omega1, ratio, shift.colour(), omega1, ratio, dir.c_str(), omega1, ratio, shift.colour(),
+                omega1, ratio);
+  draw(dir, "shift-rate", shift.text + "\n", paths);
+  PlotCommand traction{"set title 'Traction: transmitted torque against the driver slip, reference (points), plant (lines)'\n"
+                       "set xlabel 'driver slip (v1 - v_chain)/v1 [%]'\nset ylabel 'torque on the driver [N m]'\nplot "};
+  for (const double clamp : kTractionClamps_N)
+    traction.add("%s'%s/traction.csv' skip 1 using ($1==%g?100*$5:1/0):4 with linespoints dt 3 pt 7 lc %d title 'ref. %g kN', "
+                 "'%s/traction.csv' skip 1 using ($1==%g?100*$7:1/0):6 with linespoints lw 2 pt 4 lc %d title 'plant %g kN'",
+                 dir.c_str(), clamp, traction.colour(), clamp / 1000, dir.c_str(), clamp, traction.colour(), clamp / 1000);
+  draw(dir, "traction", traction.text + "\n", paths);
+  const std::string onset = "set title 'Clamping at the onset of gross slip'\nset xlabel 'input torque [N m]'\n"
          "set ylabel 'driven clamping at onset [kN]'\nplot '" + dir +
          "/gross-slip-onset.csv' skip 1 using 1:($2/1000) with linespoints pt 7 lw 1 title 'reference', '" + dir +
          "/gross-slip-onset.csv' skip 1 using 1:($3/1000) with linespoints pt 4 lw 2 title 'plant', '" + dir +
          "/gross-slip-onset.csv' skip 1 using 1:($4/1000) with lines dt 2 title 'closed form, mu0'\n";
-  draw(dir, "gross-slip-onset", body, paths);
+  draw(dir, "gross-slip-onset", onset, paths);
 }
 
 }  // namespace

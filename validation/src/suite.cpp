@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "cvtplant/validation/errors.hpp"
 
@@ -24,57 +25,51 @@ TimeProfile log_step(double delta, double t) { return TimeProfile{{{t, 1.0}, {t 
 
 OperatingPoint point(double omega1, double ratio, double torque) { return controller_point(omega1, ratio, torque); }
 
+// A manoeuvre's name, kind, start and length; the builders add its profiles.
+Manoeuvre manoeuvre(std::string name, const char* kind, const OperatingPoint& start, double t_end_s) {
+  Manoeuvre m;
+  m.name = std::move(name);
+  m.kind = kind;
+  m.start = start;
+  m.t_end_s = t_end_s;
+  return m;
+}
+
 // docs/validation.md#suite: a ratio sweep as the SIL's ratio-sweep drives
 // it, by the clamping-force ratio alone: up towards overdrive, back down and
 // held.
 Manoeuvre sweep(const char* name, double omega1, double ratio, double delta, double up_s, double down_s) {
-  Manoeuvre m;
-  m.name = name;
-  m.kind = "sweep";
-  m.start = point(omega1, ratio, 60.0);
+  Manoeuvre m = manoeuvre(name, "sweep", point(omega1, ratio, 60.0), 0.3 + up_s + down_s);
   const double e = std::exp(delta), d = std::exp(-delta);
   m.clamp1_factor = TimeProfile{{{0.05, 1.0}, {0.1, e}, {0.05 + up_s, e}, {0.1 + up_s, d},
                                  {0.05 + up_s + down_s, d}, {0.1 + up_s + down_s, 1.0}}};
-  m.t_end_s = 0.3 + up_s + down_s;
   return m;
 }
 
 // A kick-down: the driver's torque steps up, the driven clamping rises to
 // carry it and the driver's falls below it, so the ratio goes to underdrive.
 Manoeuvre kick_down(const char* name, double omega1, double ratio, double from_Nm, double to_Nm, double delta) {
-  Manoeuvre m;
-  m.name = name;
-  m.kind = "kick-down";
-  m.start = point(omega1, ratio, from_Nm);
+  Manoeuvre m = manoeuvre(name, "kick-down", point(omega1, ratio, from_Nm), 1.2);
   const double f2 = controller_clamp2_N(to_Nm, 2.0) / m.start.clamp2_N;
   m.tau_in_Nm = TimeProfile{{{0.1, from_Nm}, {0.15, to_Nm}}};
   m.clamp2_factor = TimeProfile{{{0.05, 1.0}, {0.1, f2}}};
   m.clamp1_factor = TimeProfile{{{0.05, 1.0}, {0.1, f2 * std::exp(delta)}}};
-  m.t_end_s = 1.2;
   return m;
 }
 
 // Both clampings reduced together below what the torque needs (gross slip)
 // and raised again: the SIL's clamping reduction.
 Manoeuvre clamp_reduction(const char* name, double omega1, double ratio, double torque, double low) {
-  Manoeuvre m;
-  m.name = name;
-  m.kind = "slip";
-  m.start = point(omega1, ratio, torque);
+  Manoeuvre m = manoeuvre(name, "slip", point(omega1, ratio, torque), 0.6);
   m.clamp1_factor = TimeProfile{{{0.05, 1.0}, {0.15, low}, {0.3, low}, {0.4, 1.0}}};
   m.clamp2_factor = m.clamp1_factor;
-  m.t_end_s = 0.6;
   return m;
 }
 
 Manoeuvre tip_in(const char* name, double omega1, double ratio, double from_Nm, double to_Nm) {
-  Manoeuvre m;
-  m.name = name;
-  m.kind = "tip-in";
-  m.start = point(omega1, ratio, from_Nm);
+  Manoeuvre m = manoeuvre(name, "tip-in", point(omega1, ratio, from_Nm), 0.8);
   m.start.clamp2_N = controller_clamp2_N(to_Nm, ratio);
   m.tau_in_Nm = TimeProfile{{{0.05, from_Nm}, {0.35, to_Nm}}};
-  m.t_end_s = 0.8;
   return m;
 }
 
@@ -97,21 +92,14 @@ OperatingPoint controller_point(double omega1_rad_s, double ratio, double torque
 }
 
 Manoeuvre hold_manoeuvre(double omega1_rad_s, double ratio, double torque_Nm, double t_end_s) {
-  Manoeuvre m;
-  m.name = label("hold", omega1_rad_s, ratio, torque_Nm);
-  m.kind = "hold";
-  m.start = point(omega1_rad_s, ratio, torque_Nm);
-  m.t_end_s = t_end_s;
-  return m;
+  return manoeuvre(label("hold", omega1_rad_s, ratio, torque_Nm), "hold", point(omega1_rad_s, ratio, torque_Nm), t_end_s);
 }
 
 Manoeuvre clamp_step_manoeuvre(const OperatingPoint& op, double delta, double at_s, double t_end_s) {
-  Manoeuvre m;
-  m.name = label(delta > 0 ? "step-up" : "step-down", op.omega1_rad_s, op.ratio, std::fabs(delta));
-  m.kind = "clamp-step";
-  m.start = op;
+  Manoeuvre m =
+      manoeuvre(label(delta > 0 ? "step-up" : "step-down", op.omega1_rad_s, op.ratio, std::fabs(delta)), "clamp-step", op,
+                t_end_s);
   m.clamp1_factor = log_step(delta, at_s);
-  m.t_end_s = t_end_s;
   return m;
 }
 

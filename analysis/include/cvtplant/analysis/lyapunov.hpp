@@ -171,6 +171,32 @@ inline void finish_stats(SpectrumResult& r, const std::vector<std::vector<double
   }
 }
 
+// One batch's exponents, the sums of its log stretches over its length tb;
+// the sums start again from zero.
+template <int N>
+void push_batch(std::vector<std::vector<double>>& batch, Eigen::Matrix<double, N, 1>& batch_acc, double tb) {
+  std::vector<double> b(N);
+  for (int i = 0; i < N; ++i) b[i] = batch_acc(i) / tb;
+  batch.push_back(b);
+  batch_acc.setZero();
+}
+
+// The running estimate acc / t (sorted) as a convergence row, when `done`
+// of the n_acc accumulated steps reaches next_conv (which then doubles) or
+// the end.
+template <int N>
+void convergence_row(SpectrumResult& r, const Eigen::Matrix<double, N, 1>& acc, long done, long n_acc, double t,
+                     long& next_conv) {
+  if (done < next_conv && done != n_acc) return;
+  ConvergenceRow row;
+  row.t = t;
+  for (int i = 0; i < N; ++i) row.exponents.push_back(acc(i) / row.t);
+  std::sort(row.exponents.rbegin(), row.exponents.rend());
+  r.convergence.push_back(row);
+  while (next_conv <= done) next_conv *= 2;
+  if (next_conv > n_acc) next_conv = n_acc;
+}
+
 }  // namespace detail
 
 // docs/analysis.md#benettin
@@ -250,23 +276,9 @@ SpectrumResult lyapunov_flow(const Flow& sys, const Eigen::Matrix<double, Flow::
         acc += logs;
         batch_acc += logs;
         ++qr_count;
-        if (qr_count % qr_per_batch == 0) {
-          const double tb = qr_per_batch * renorm_steps * h;
-          std::vector<double> b(N);
-          for (int i = 0; i < N; ++i) b[i] = batch_acc(i) / tb;
-          batch.push_back(b);
-          batch_acc.setZero();
-        }
+        if (qr_count % qr_per_batch == 0) detail::push_batch<N>(batch, batch_acc, qr_per_batch * renorm_steps * h);
         const long done = s + 1 - n_warm;
-        if (done >= next_conv || done == n_acc) {
-          ConvergenceRow row;
-          row.t = done * h;
-          for (int i = 0; i < N; ++i) row.exponents.push_back(acc(i) / row.t);
-          std::sort(row.exponents.rbegin(), row.exponents.rend());
-          r.convergence.push_back(row);
-          while (next_conv <= done) next_conv *= 2;
-          if (next_conv > n_acc) next_conv = n_acc;
-        }
+        detail::convergence_row<N>(r, acc, done, n_acc, done * h, next_conv);
       }
     }
   }
@@ -344,21 +356,8 @@ SpectrumResult lyapunov_map(const Map& sys, const Eigen::Matrix<double, Map::kSt
     bacc += logs;
     logdet += std::log(std::abs(J.determinant()));
     const long done = s + 1 - n_warm;
-    if (done % per_batch == 0) {
-      std::vector<double> b(N);
-      for (int i = 0; i < N; ++i) b[i] = bacc(i) / per_batch;
-      batch.push_back(b);
-      bacc.setZero();
-    }
-    if (done >= next_conv || done == n_acc) {
-      ConvergenceRow row;
-      row.t = static_cast<double>(done);
-      for (int i = 0; i < N; ++i) row.exponents.push_back(acc(i) / row.t);
-      std::sort(row.exponents.rbegin(), row.exponents.rend());
-      r.convergence.push_back(row);
-      while (next_conv <= done) next_conv *= 2;
-      if (next_conv > n_acc) next_conv = n_acc;
-    }
+    if (done % per_batch == 0) detail::push_batch<N>(batch, bacc, static_cast<double>(per_batch));
+    detail::convergence_row<N>(r, acc, done, n_acc, static_cast<double>(done), next_conv);
   }
   std::vector<int> order(N);
   for (int i = 0; i < N; ++i) order[i] = i;

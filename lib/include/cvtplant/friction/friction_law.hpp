@@ -53,56 +53,53 @@ struct FrictionParams {
 // Named presets: the seed's parameter sets (docs/physics.md#friction-presets).
 namespace friction_presets {
 
-// Seed section 3, constant coefficient ("classical Coulomb-Amonton").
+// The seed's kinetic coefficient and smoothed sign (Eq. 9, lambda = 1e4)
+// under `law`; every preset starts from it.
 template <class T>
-constexpr FrictionParams<T> oscillator_coulomb() {
+constexpr FrictionParams<T> seed_law(FrictionLaw law) {
   FrictionParams<T> p;
-  p.law = FrictionLaw::constant;
+  p.law = law;
   p.mu0 = T(seed::kMu0);
   p.sign = SignFunction::atan;
   p.lambda_s_m = T(seed::kOscSignSlope_s_m);
   return p;
+}
+
+// Case 2 (Stribeck) with the seed's mu0 and sign.
+template <class T>
+constexpr FrictionParams<T> seed_stribeck(double sigma, double kappa_s_m, double chi_s_m) {
+  FrictionParams<T> p = seed_law<T>(FrictionLaw::case2);
+  p.sigma = T(sigma);
+  p.kappa_s_m = T(kappa_s_m);
+  p.chi_s_m = T(chi_s_m);
+  return p;
+}
+
+// Seed section 3, constant coefficient ("classical Coulomb-Amonton").
+template <class T>
+constexpr FrictionParams<T> oscillator_coulomb() {
+  return seed_law<T>(FrictionLaw::constant);
 }
 
 // Seed section 3, Stribeck: mu0 = 0.25, sigma = 6.5, chi = 1, kappa = 5, lambda = 1e4.
 template <class T>
 constexpr FrictionParams<T> oscillator_stribeck() {
-  FrictionParams<T> p;
-  p.law = FrictionLaw::case2;
-  p.mu0 = T(seed::kMu0);
-  p.sigma = T(seed::kOscStribeckSigma);
-  p.kappa_s_m = T(seed::kOscStribeckKappa_s_m);
-  p.chi_s_m = T(seed::kOscStribeckChi_s_m);
-  p.sign = SignFunction::atan;
-  p.lambda_s_m = T(seed::kOscSignSlope_s_m);
-  return p;
+  return seed_stribeck<T>(seed::kOscStribeckSigma, seed::kOscStribeckKappa_s_m, seed::kOscStribeckChi_s_m);
 }
 
 // Seed Table 2, case 1 (Coulomb-like with a start-up ramp): a = 0.003, b = 0.1, mu0 = 0.25.
 template <class T>
 constexpr FrictionParams<T> table2_case1() {
-  FrictionParams<T> p;
-  p.law = FrictionLaw::case1;
-  p.mu0 = T(seed::kMu0);
+  FrictionParams<T> p = seed_law<T>(FrictionLaw::case1);
   p.a = T(seed::kCase1A);
   p.b_m_s = T(seed::kCase1B_m_s);
-  p.sign = SignFunction::atan;
-  p.lambda_s_m = T(seed::kOscSignSlope_s_m);
   return p;
 }
 
 // Seed Table 2, case 2 (Stribeck): mu0 = 0.25, sigma = 3.5, kappa = 10, chi = 3.
 template <class T>
 constexpr FrictionParams<T> table2_case2() {
-  FrictionParams<T> p;
-  p.law = FrictionLaw::case2;
-  p.mu0 = T(seed::kMu0);
-  p.sigma = T(seed::kCase2Sigma);
-  p.kappa_s_m = T(seed::kCase2Kappa_s_m);
-  p.chi_s_m = T(seed::kCase2Chi_s_m);
-  p.sign = SignFunction::atan;
-  p.lambda_s_m = T(seed::kOscSignSlope_s_m);
-  return p;
+  return seed_stribeck<T>(seed::kCase2Sigma, seed::kCase2Kappa_s_m, seed::kCase2Chi_s_m);
 }
 
 }  // namespace friction_presets

@@ -60,6 +60,19 @@ struct RomConfig {
   }
 };
 
+// The names a feature's class (plant/feature/*.hpp) works in, from its
+// plant configuration Cfg: the scalar T, layout L, units U, accumulator Acc,
+// State and Vec<S>. One list for every feature: a class template cannot take
+// member type names from a dependent base without restating them.
+#define CVT_ROM_FEATURE_TYPES(Cfg)   \
+  using T = typename Cfg::Scalar;    \
+  using L = typename Cfg::Layout;    \
+  using U = typename Cfg::U;         \
+  using Acc = typename Cfg::Acc;     \
+  using State = typename Cfg::State; \
+  template <class S>                 \
+  using Vec = typename Cfg::template Vec<S>
+
 // A feature of a plant whose scene asked for it: compiled in, or carried and
 // switched on at set-up (`features`, the plant's run-time mask).
 template <class Cfg>

@@ -72,13 +72,7 @@ class RomAxial {
 
 template <class Cfg>
 class RomAxial<Cfg, true> {
-  using T = typename Cfg::Scalar;
-  using L = typename Cfg::Layout;
-  using U = typename Cfg::U;
-  using Acc = typename Cfg::Acc;
-  using State = typename Cfg::State;
-  template <class S>
-  using Vec = typename Cfg::template Vec<S>;
+  CVT_ROM_FEATURE_TYPES(Cfg);
 
  public:
   explicit RomAxial(const RomParams& p)

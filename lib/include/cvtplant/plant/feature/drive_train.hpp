@@ -23,13 +23,7 @@ namespace cvt {
 
 template <class Cfg>
 class RomDriveTrain {
-  using T = typename Cfg::Scalar;
-  using L = typename Cfg::Layout;
-  using U = typename Cfg::U;
-  using Acc = typename Cfg::Acc;
-  using State = typename Cfg::State;
-  template <class S>
-  using Vec = typename Cfg::template Vec<S>;
+  CVT_ROM_FEATURE_TYPES(Cfg);
 
  public:
   RomDriveTrain(const RomParams& p, const RomFlankAngles& b) {

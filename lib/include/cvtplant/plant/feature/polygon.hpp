@@ -29,9 +29,7 @@ struct RomRippleCache<T, true> {
 
 template <class Cfg, bool kOn = Cfg::kPolygon>
 class RomPolygon {
-  using T = typename Cfg::Scalar;
-  template <class S>
-  using Vec = typename Cfg::template Vec<S>;
+  CVT_ROM_FEATURE_TYPES(Cfg);
 
  public:
   using Cache = RomRippleCache<T, false>;
@@ -68,11 +66,7 @@ class RomPolygon {
 
 template <class Cfg>
 class RomPolygon<Cfg, true> {
-  using T = typename Cfg::Scalar;
-  using L = typename Cfg::Layout;
-  using State = typename Cfg::State;
-  template <class S>
-  using Vec = typename Cfg::template Vec<S>;
+  CVT_ROM_FEATURE_TYPES(Cfg);
 
  public:
   using Cache = RomRippleCache<T, true>;

@@ -35,9 +35,7 @@ struct Strands {
 // is delta and the strands' stretch the lumps' displacement.
 template <class Cfg, bool kOn = Cfg::kRadial>
 class RomRadial {
-  using T = typename Cfg::Scalar;
-  template <class S>
-  using Vec = typename Cfg::template Vec<S>;
+  CVT_ROM_FEATURE_TYPES(Cfg);
 
  public:
   RomRadial(const RomParams&, const double*) {}
@@ -105,12 +103,7 @@ class RomRadial {
 
 template <class Cfg>
 class RomRadial<Cfg, true> {
-  using T = typename Cfg::Scalar;
-  using L = typename Cfg::Layout;
-  using Acc = typename Cfg::Acc;
-  using State = typename Cfg::State;
-  template <class S>
-  using Vec = typename Cfg::template Vec<S>;
+  CVT_ROM_FEATURE_TYPES(Cfg);
   static_assert(!Cfg::U::kScaled, "the wedging feature runs in floating point only");
 
  public:

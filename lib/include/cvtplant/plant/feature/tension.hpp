@@ -44,9 +44,7 @@ struct RomTensionLoads<S, true> {
 // runs at v_c everywhere.
 template <class Cfg, bool kOn = Cfg::kTension>
 class RomTension {
-  using T = typename Cfg::Scalar;
-  template <class S>
-  using Vec = typename Cfg::template Vec<S>;
+  CVT_ROM_FEATURE_TYPES(Cfg);
 
  public:
   using Cache = RomContactTension<T, false>;
@@ -73,12 +71,7 @@ class RomTension {
 
 template <class Cfg>
 class RomTension<Cfg, true> {
-  using T = typename Cfg::Scalar;
-  using L = typename Cfg::Layout;
-  using U = typename Cfg::U;
-  using State = typename Cfg::State;
-  template <class S>
-  using Vec = typename Cfg::template Vec<S>;
+  CVT_ROM_FEATURE_TYPES(Cfg);
 
  public:
   using Cache = RomContactTension<T, true>;
