@@ -37,9 +37,10 @@ inline void fixed_sheaves_ripple(Scene& s) {
   s.params.ripple_gain = 0.148;
 }
 // tools/scenes/ratio-control-tension.toml: ratio-control's primary clamping
-// stepped from 3.3 to 3.5 kN at 2 s (an upshift), and the same with the
-// link-passing ripple of tools/scenes/seed-case1-ripple.toml.
-inline void primary_step(Scene& s) { s.clamp = step_profile(3300.0, 3500.0, 2.0); }
+// stepped from the 11.34 kN that holds its ratio to 1.1 times that at 2 s
+// (an upshift, off the end stops), and the same with the link-passing ripple
+// of tools/scenes/seed-case1-ripple.toml.
+inline void primary_step(Scene& s) { s.clamp = step_profile(11342.279, 12476.507, 2.0); }
 inline void primary_step_ripple(Scene& s) {
   primary_step(s);
   s.params.ripple_gain = 0.148;

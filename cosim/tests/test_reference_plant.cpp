@@ -42,7 +42,8 @@ TEST_CASE("reference plant: the published parameters are the reference's geometr
   ReferencePlant p;
   REQUIRE(p.load(*cvt::find_builtin_scene("ratio-control")));
   const cvt::sil::PublishedParams q = p.published();
-  const double mu0 = 0.25, beta0 = 15.0 * M_PI / 180.0;  // Table 2 case 1, Table 1
+  // The scene's friction (the production CVT's mu0 = 0.09), Table 1's sheave angle.
+  const double mu0 = cvt::find_builtin_scene("ratio-control")->params.friction.mu0, beta0 = 15.0 * M_PI / 180.0;
   const double r1 = 0.0762, r2 = 0.1143, c = 0.5, travel = 0.025;
   CHECK(q.variable_ratio);
   // Seed Eq. 7 at rest: each bolt presses both flanks with F_b / cos(beta0).

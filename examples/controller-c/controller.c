@@ -115,6 +115,9 @@ int controller_step(controller* c, cvt_can_frame out[2]) {
           c->integral = clampf(c->integral + RATIO_KI * e * PERIOD_S, -RATIO_INTEGRAL_MAX, RATIO_INTEGRAL_MAX);
       }
       const float k = clampf(thrust_at(c, c->ref) + RATIO_KP * e + c->integral, THRUST_MIN, THRUST_MAX);
+      /* The smaller clamping at the floor, the other raised to shift: in
+       * overdrive (k > 1) the driven one is the smaller. */
+      if (f1 < CLAMP_MIN_N * k) f1 = clampf(CLAMP_MIN_N * k, CLAMP_MIN_N, clamp_max);
       f2 = clampf(f1 / k, CLAMP_MIN_N, clamp_max);
     }
   }

@@ -17,17 +17,17 @@
 
 /* ---- the controller's tuning ---- */
 #define SAFETY_FACTOR 1.3f        /* torque capacity kept over max(|demand|, |transmitted|) */
-#define CLAMP_MIN_N 1000.0f       /* keeps the chain seated at zero torque */
+#define CLAMP_MIN_N 12500.0f      /* each pulley's floor: the production CVT's (seats the chain, sets the shift speed) */
 #define SLIP_LIMIT 0.08f          /* |slip| above this adds clamping */
 #define SLIP_GAIN_N 5.0e4f        /* per unit of slip beyond the limit, per period */
 #define EXTRA_DECAY 0.98f         /* of that extra clamping, per period */
 #define EXTRA_MAX_N 20000.0f
-#define RATIO_KP 2.0f             /* thrust ratio per unit of ratio error */
+#define RATIO_KP 3.0f             /* thrust ratio per unit of ratio error */
 #define RATIO_KI 1.0f             /* ... and per unit of error and second */
-#define RATIO_INTEGRAL_MAX 0.1f
-#define SHIFT_RATE_PER_S 0.6f     /* the set-point is followed at most this fast */
-#define THRUST_MIN 0.6f
-#define THRUST_MAX 1.4f
+#define RATIO_INTEGRAL_MAX 0.2f
+#define SHIFT_RATE_PER_S 0.5f     /* the set-point is followed at most this fast */
+#define THRUST_MIN 0.35f
+#define THRUST_MAX 1.5f
 #define PERIOD_S 0.01f            /* one control period: the CtrlCmd cycle */
 #define CLAMP_NO_PARAMS_N 20000.0f /* before the plant's parameters are known */
 

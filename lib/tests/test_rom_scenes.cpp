@@ -23,7 +23,7 @@ template <class T>
 using BuiltinPlants =
     std::conditional_t<std::is_floating_point<T>::value,
                        cvt::RomPlantSet<T, 0, f::axial, f::axial | f::road_load, f::axial | f::road_load | f::wedging,
-                                        f::tension>,
+                                        f::axial | f::road_load | f::wedging | f::tension, f::tension>,
                        cvt::RomPlantSet<T, 0, f::axial, f::axial | f::road_load, f::tension>>;  // wedging: floating point only
 
 struct EnergyResult {
@@ -274,6 +274,57 @@ TEST_CASE("lumped parameters follow from seed Table 1 (docs/rom.md#lumped-parame
   // Clamping that carries the seed's 100 N m at mu0 = 0.25: 2.54 kN.
   const double F_100 = 100.0 / (2.0 * 0.25 * r1 / std::cos(15.0 * M_PI / 180.0));
   CHECK(F_100 == doctest::Approx(2535.2).epsilon(1e-4));
+}
+
+TEST_CASE("production lumps follow from the production set (docs/rom.md#production-lumps)") {
+  namespace pr = cvt::production;
+  const double r1 = 0.0762, r2 = 0.1143, C = 0.5, L = pr::kLinkLength_m, m = pr::kLinkMass_kg;
+  const double k = pr::kJointStiffness_N_m, p = pr::kJointDamping_Ns_m, Kb = pr::kBoltStiffness_N_m;
+  const double asin_phi = std::asin((r2 - r1) / C);
+  const double theta1 = M_PI - 2.0 * asin_phi, theta2 = M_PI + 2.0 * asin_phi;
+  const double n_w = r1 * theta1 / L, n_w2 = r2 * theta2 / L;
+  const double n_s = std::sqrt(C * C - (r2 - r1) * (r2 - r1)) / L;
+  // 53 links of 30.2 mm: the chain is 0.8 mm shorter than the 1.6014 m pitch line.
+  const double pitch_line = r1 * theta1 + r2 * theta2 + 2.0 * n_s * L;
+  CHECK(pitch_line - 53.0 * L == doctest::Approx(0.0008).epsilon(0.05));
+  cvt::RomParams d;
+  pr::apply(d);
+  CHECK(d.lump_mass_kg == doctest::Approx(0.5 * n_w * m).epsilon(1e-12));
+  CHECK(d.k1_N_m == doctest::Approx(k / (2.0 * n_s)).epsilon(1e-12));
+  CHECK(d.c1_Ns_m == doctest::Approx(p / (2.0 * n_s)).epsilon(1e-12));
+  CHECK(d.k2_N_m == doctest::Approx(k / (0.5 * n_w)).epsilon(1e-12));
+  CHECK(d.c2_Ns_m == doctest::Approx(p / (0.5 * n_w)).epsilon(1e-12));
+  CHECK(d.K_ax_N_m == doctest::Approx(n_w * Kb).epsilon(1e-12));
+  CHECK(d.sheave_damping_Ns_m == doctest::Approx(0.3 * 2.0 * std::sqrt(d.K_ax_N_m * d.sheave_mass_kg)).epsilon(1e-12));
+  // The radial mass: the driver wrap's links and the driven wrap's reflected
+  // through kappa(0) = theta1 / theta2; its damping 0.05 of critical on the
+  // chain-on-bolt spring 4 tan^2(beta0) K_ax (1.24 kHz).
+  const double kappa0 = theta1 / theta2;
+  CHECK(kappa0 == doctest::Approx(0.907382).epsilon(1e-6));
+  CHECK(d.radial_mass_kg == doctest::Approx((n_w + kappa0 * kappa0 * n_w2) * m).epsilon(1e-5));
+  const double k_r = 4.0 * std::tan(d.beta0_rad) * std::tan(d.beta0_rad) * d.K_ax_N_m;
+  CHECK(std::sqrt(k_r / d.radial_mass_kg) / (2.0 * M_PI) == doctest::Approx(1241.2).epsilon(1e-3));
+  CHECK(d.radial_damping_Ns_m == doctest::Approx(0.05 * 2.0 * std::sqrt(k_r * d.radial_mass_kg)).epsilon(1e-5));
+  CHECK(d.chain_mass_kg_m == doctest::Approx(1.3245).epsilon(1e-4));
+  CHECK(d.chain_stiffness_N == doctest::Approx(1.51e6).epsilon(1e-12));
+  CHECK(d.pitch_m == L);
+  CHECK(d.friction.mu0 == 0.09);
+  CHECK(d.friction.a == 0.0);
+  CHECK(d.friction.b_m_s == 0.03);
+  // The controller's driven clamping (docs/mbd-production.md#envelope): the
+  // 12.5 kN floor up to 136.5 N m, then 1.3 T cos(beta0) / (2 mu0 r1).
+  CHECK(pr::driven_clamp_for_N(60.0) == pr::kClampMin_N);
+  CHECK(pr::driven_clamp_for_N(150.0) == doctest::Approx(13732.5).epsilon(1e-5));
+  // ratio-control: the driven pulley at the floor, the primary at kappa(0)
+  // of it (the set-up ratio held without load), its torque capacity 2 mu0
+  // F1 r1 / cos(beta0) above 1.3 x its 60 N m.
+  const cvt::Scene& rc = *cvt::find_builtin_scene("ratio-control");
+  CHECK(rc.params.driven_clamp_N == pr::kClampMin_N);
+  CHECK(rc.clamp.at(0.0) / rc.params.driven_clamp_N == doctest::Approx(kappa0).epsilon(1e-6));
+  CHECK(2.0 * 0.09 * rc.clamp.at(0.0) * r1 / std::cos(d.beta0_rad) > 1.3 * rc.tau_in.at(0.0));
+  // Validated against the reference's production set; the seed's scenes keep Table 1's.
+  for (const cvt::Scene& s : cvt::kBuiltinScenes)
+    CHECK(std::string(s.reference_set) == (std::string(s.name) == "ratio-control" ? "production" : "seed"));
 }
 
 namespace {

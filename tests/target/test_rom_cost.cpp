@@ -111,8 +111,9 @@ CVT_TARGET_TEST(rom_frame_instruction_counts_float) {
   CHECK_GT(counts.seed_case1_wedging, counts.seed_case1);
   // The variable-ratio plant of ratio control over CAN (docs/rom.md#cost):
   // its goal is 10,000 instructions per frame, met by the analytic Jacobian,
-  // the 6x6 block solve and the contact shared with the ledger (4,563 on the
-  // M4F image, 4,444 on the M7's). The count is exact for one binary, but the
+  // the 6x6 block solve and the contact shared with the ledger (4,587 on the
+  // M4F image with the production-like CVT's lumps, docs/rom.md#production-lumps;
+  // 4,444 on the M7's with the seed chain's). The count is exact for one binary, but the
   // code around the measured call (this file's lambdas, inlining) moves it by
   // tens of instructions, so the band is 4 % above the M4F's count and 2 %
   // below the M7's: a change of the plant's work shows, a rebuild of this

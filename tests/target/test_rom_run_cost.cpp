@@ -137,14 +137,15 @@ CVT_TARGET_TEST(rom_run_frame_flatness_float) {
 }
 
 // Every feature of the variable-ratio plant at once (docs/rom.md#tension-radial):
-// ratio-control with the chain's tension state through a 3.3 -> 3.5 kN
-// upshift at 2 s, off the end stops, 3 s of frames: the median within the
-// goal of 5,000 instructions and the worst frame within 1.2 times the median.
-// The worst frames are the first ones, near stick, where the wedge contact's
-// W slope floor evaluates the friction slope at each lump's own slip (5,320
-// on the M4F, 5,198 on the M7; docs/rom.md#cost): above the goal, so their
-// bound is a regression bound 1.5 % above the M4F's count until that
-// evaluation is shared with the contact's.
+// ratio-control (the production-like CVT, docs/rom.md#production-lumps)
+// through its upshift at 2 s (primary clamping x1.1), off the end stops, 3 s
+// of frames: the median within the goal of 5,000 instructions (4,976 on the
+// M4F) and the worst frame within 1.2 times the median. The worst frame is
+// the first one, near stick, where the wedge contact's W slope floor
+// evaluates the friction slope at each lump's own slip (5,475 on the M4F;
+// docs/rom.md#cost): above the goal, so its bound is a regression bound
+// 1.5 % above the M4F's count until that evaluation is shared with the
+// contact's.
 CVT_TARGET_TEST(rom_run_frame_flatness_full_composition_float) {
   namespace f = rom_feature;
   const RunStats full = run_counts<float, f::axial | f::road_load | f::wedging | f::tension>(
@@ -152,7 +153,7 @@ CVT_TARGET_TEST(rom_run_frame_flatness_full_composition_float) {
   CHECK_EQ(full.frames, 3000L);
   CHECK_LE(10u * full.max_exact, 12u * full.median_exact);
   CHECK_LE(full.median_exact, 5000u);
-  CHECK_LE(full.max_exact, 5400u);
+  CHECK_LE(full.max_exact, 5560u);
 }
 
 // The variable-ratio plant onto its hub stop: clamp-step with wedging, whose

@@ -257,6 +257,7 @@ class Reader {
       const cvt::Scene* b = cvt::find_builtin_scene(base.c_str());
       if (b == nullptr) fail(root_.get("base")->source(), "base", "no built-in scene " + quoted(base) + " (see cvtplant scenes)");
       s = *b;
+      out.reference_set = b->reference_set;
     }
     out.name = text(root_, "", "name", base.empty() ? std::string("unnamed") : base);
     // The name becomes file names (validate's DIR/NAME.csv) and report
@@ -380,6 +381,7 @@ std::shared_ptr<LoadedScene> resolve_scene(const std::string& name_or_path) {
     out->name = b->name;
     out->summary = b->summary;
     out->source = "built-in";
+    out->reference_set = b->reference_set;
     out->scene.name = out->name.c_str();
     out->scene.summary = out->summary.c_str();
     return out;

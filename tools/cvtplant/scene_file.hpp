@@ -16,7 +16,8 @@ struct LoadedScene {
   cvt::Scene scene;
   std::string name, summary, source;  // source: "built-in" or the file path
   // The multibody reference's parameter set the scene is validated against
-  // (docs/validation.md#parameter-sets): a scene file's `reference_set`.
+  // (docs/validation.md#parameter-sets): a scene file's `reference_set`, else
+  // its base scene's (cvt::Scene::reference_set: ratio-control's production).
   std::string reference_set = "seed";
 };
 

@@ -29,8 +29,8 @@ void add_reference_options(CLI::App* sub, ReferenceOptions& o, const std::string
            "Shorten every run to this simulated time [s] (default: each scene's)");
   sub->add_option("--set", o.set,
                   "The reference's parameter set for every scene: seed (Table 1) or production (the production-like "
-                  "chain CVT, docs/mbd-production.md); default: each scene's own (a scene file's reference_set, "
-                  "else seed)")
+                  "chain CVT, docs/mbd-production.md); default: each scene's own (a scene file's reference_set, its "
+                  "base's, else seed; ratio-control's is production)")
       ->check(CLI::IsMember({"seed", "production"}));
 }
 

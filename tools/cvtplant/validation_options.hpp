@@ -44,7 +44,8 @@ long long reference_step_cap(const cvt::Scene& s, const cvt::validation::RunSett
                              const std::string& scene_name);
 
 // The settings for one scene: the parameter set --set names, or the
-// scene's own (a scene file's `reference_set`; the built-in scenes' seed).
+// scene's own (a scene file's `reference_set`, else its base's; ratio-control's
+// production, the other built-in scenes' seed).
 cvt::validation::RunSettings settings_for(const cvt::validation::RunSettings& st, const ReferenceOptions& o,
                                           const LoadedScene& scene);
 

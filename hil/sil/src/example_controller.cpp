@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "cvtplant/can/bits.hpp"
+
 namespace cvt::sil::harness {
 
 void ExampleController::begin_run(const Scenario&) {
@@ -37,8 +39,12 @@ void ExampleController::after_step() {
 
 void ExampleController::end_run() { faults_.freeze(false); }
 
+// The commands as they go on the wire, at the DBC's 1 N resolution and its
+// rounding (an external controller's are decoded from its frames): a law's
+// 18052.5 N is 18053 N in both traces.
 Commands ExampleController::commands() const {
-  return {node_.last_output().clamp_force_cmd_N, node_.last_ratio_output().driven_clamp_cmd_N};
+  const auto wire = [](float n) { return static_cast<float>(cvt::can::bits::round_to_i32(n)); };
+  return {wire(node_.last_output().clamp_force_cmd_N), wire(node_.last_ratio_output().driven_clamp_cmd_N)};
 }
 
 void ExampleController::rt_begin(const Scenario&) {

@@ -30,22 +30,24 @@ void add_ratio_scenarios(std::vector<Scenario>& v) {
     if (t < 4.0) return ramp(t, 0.5, 2.5, 1.5f, 2.3f);
     if (t < 9.0) return ramp(t, 4.0, 7.0, 2.3f, 1.0f);
     if (t < 12.0) return ramp(t, 9.0, 10.0, 1.0f, 1.5f);
-    if (t < 14.0) return 2.9f;  // beyond the underdrive stop (2.65)
+    // The reference moves at no more than 0.5 ratio/s (docs/sil.md#ratio-control):
+    // 2.3 s from 1.5 to the underdrive stop, 3.5 s from there to the overdrive one.
+    if (t < 15.0) return 2.9f;  // beyond the underdrive stop (2.65)
     return 0.8f;                // beyond the overdrive stop (0.89)
   };
-  sw.t_end_s = 17.5;
+  sw.t_end_s = 20.0;
   sw.track_bound = 0.05;
   sw.expect_end_stop = true;
-  sw.end_stops_by_s = 17.5;
+  sw.end_stops_by_s = 20.0;
   sw.min_t_end_s = 3.6;  // the first ramp's set-point held 1 s
   v.push_back(sw);
-  Scenario kd{"kick-down", "ratio 1.0 at 40 N m; at 2 s tip-in to 120 N m over 0.2 s and set-point 1.0 -> 2.0", 5.5,
+  Scenario kd{"kick-down", "ratio 1.0 at 40 N m; at 2 s tip-in to 120 N m over 0.2 s and set-point 1.0 -> 2.0", 6.0,
               [](double t) { return ramp(t, 2.0, 2.2, 40.0f, 120.0f); }};
   kd.scene = cvt::can::SceneId::RatioControl;
   kd.ratio_target = [](double t) { return t < 0.5 ? 1.5f : (t < 2.0 ? 1.0f : 2.0f); };
   kd.track_bound = 0.05;
-  kd.settle_s = 2.0;
-  kd.min_t_end_s = 4.1;
+  kd.settle_s = 2.5;  // the downshift takes 2 s at the bounded shift speed
+  kd.min_t_end_s = 4.6;
   v.push_back(kd);
   Scenario sr{"slip-recovery", "ratio 1.5 at 100 N m; the clamping supply drops to 20 % for 500 ms at 1 s, then back",
               3.5, [](double) { return 100.0f; }};

@@ -36,7 +36,7 @@ const char kUsage[] =
     "                          [--mode lockstep|realtime|both] [--t-end S] [--reply-timeout-ms T]\n"
     "                          [--controller example|external] [--controller-cmd CMD] [--controller-timeout-ms T]\n"
     "                          [--plant NAME] [--plant-option NAME=VALUE]... [--plant-cmd CMD] [--safety X]\n"
-    "                          [--loopback-frame-cost-us US]\n"
+    "                          [--clamp-floor N] [--loopback-frame-cost-us US]\n"
     "       cvtplant-sil bench [--iface NAME|--loopback] [--steps N] [--with-controller] [--reply-timeout-ms T]\n"
     "Plays the SIL scenarios against a plant on a CAN bus and a controller under test,\n"
     "judges their criteria and writes CSV traces and a JUnit report (docs/sil.md).\n"
@@ -81,6 +81,7 @@ const char kUsage[] =
     "  --out DIR           per-scenario CSV traces (default .)\n"
     "  --junit FILE        JUnit XML report of every criterion\n"
     "  --safety X          the example controller's safety factor (default 1.3)\n"
+    "  --clamp-floor N     the example ratio law's clamping floor on each pulley [N] (default 12500)\n"
     "  --steps N           bench: lock-step round trips (default 5000)\n"
     "  --with-controller   bench: a CtrlCmd from the controller before each Step\n"
     "Exit status: 0 all criteria passed, 1 a criterion failed or the plant did not answer, 2 bad command line.\n";
@@ -138,6 +139,7 @@ int main(int argc, char** argv) {
   double t_end_s = 0, controller_timeout_ms = 1000;
   std::int64_t frame_cost_ns = 0;
   cvtctl::ClampLawParams law;
+  float clamp_floor_N = cvtctl::production_clamp_law().clamp_min_N;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "-h" || a == "--help") {
@@ -149,7 +151,7 @@ int main(int argc, char** argv) {
       continue;
     }
     static const char* const kValueFlags[] = {
-        "--iface", "--scenario", "--out", "--junit", "--safety", "--steps", "--reply-timeout-ms", "--mode",
+        "--iface", "--scenario", "--out", "--junit", "--safety", "--clamp-floor", "--steps", "--reply-timeout-ms", "--mode",
         "--loopback-frame-cost-us", "--controller", "--controller-cmd", "--controller-timeout-ms", "--plant-cmd",
         "--t-end", "--plant", "--plant-option"};
     bool known = false;
@@ -187,6 +189,9 @@ int main(int argc, char** argv) {
       if (end == v.c_str() || *end != '\0' || !(law.safety > 0.1f && law.safety < 10.0f))
         bad_usage("--safety: expected a number in (0.1, 10), got '" + v + "'");
       safety_given = true;
+    } else if (a == "--clamp-floor") {
+      clamp_floor_N = static_cast<float>(number(a, v, 100, 40000));
+      safety_given = true;
     } else if (a == "--reply-timeout-ms") reply_timeout_ms = number(a, v, 1, 10000);
     else if (a == "--controller-timeout-ms") controller_timeout_ms = number(a, v, 1, 600000);
     else if (a == "--t-end") t_end_s = number(a, v, 0.01, 1e5);
@@ -196,7 +201,8 @@ int main(int argc, char** argv) {
   const bool external = controller == "external";
   if (external && loopback)
     bad_usage("--controller external: needs a CAN interface (--iface): the controller is another program");
-  if (external && safety_given) bad_usage("--safety: sets the example controller's margin, not an external one's");
+  if (external && safety_given)
+    bad_usage("--safety, --clamp-floor: set the example controller's margin, not an external one's");
   if (external && cmd == "bench") bad_usage("bench: runs the example controller only");
   if (loopback && !plant_cmd.empty()) bad_usage("--plant-cmd: the loopback bus has its plant in this process");
 
@@ -319,7 +325,8 @@ int main(int argc, char** argv) {
   }
   // --safety sets the clamping margin of both laws (ClampLaw, RatioLaw).
   cvtctl::RatioLawParams ratio_law;
-  ratio_law.clamp = law;
+  ratio_law.clamp.safety = law.safety;
+  ratio_law.clamp.clamp_min_N = clamp_floor_N;
   std::unique_ptr<ControllerUnderTest> ctl;
   ExampleController* example = nullptr;
   if (external) {

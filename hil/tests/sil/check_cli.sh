@@ -23,6 +23,9 @@ expect 2 "$SIL"
 expect 2 "$SIL" fly
 expect 2 "$SIL" run --scenario nope
 expect 2 "$SIL" run --safety x
+expect 2 "$SIL" run --clamp-floor 5
+expect 2 "$SIL" run --clamp-floor 1e5
+expect 2 "$SIL" run --controller external --clamp-floor 2000
 expect 2 "$SIL" run --reply-timeout-ms 0
 expect 2 "$SIL" run --mode fast
 expect 2 "$SIL" run --loopback --mode realtime --scenario tip-in

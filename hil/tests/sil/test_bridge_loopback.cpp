@@ -926,26 +926,27 @@ TEST_CASE("variable ratio: PlantShift in the group, CtrlShiftCmd sets the driven
   CHECK(std::fabs(g.shift.radius_driver_m - sc.params.r1_m) < 2e-4);
   CHECK(!g.shift.end_stop_underdrive);
   CHECK(!g.shift.end_stop_overdrive);
-  // 5 kN driven against 3.3 kN primary: the chain moves in on the driver
+  // 16 kN driven against 12.5 kN primary (thrust ratio 0.78, below the
+  // 0.805 that holds the underdrive stop): the chain moves in on the driver
   // (downshift) and reaches the underdrive stop, which PlantShift reports.
   bool stop_seen = false;
-  for (int k = 0; k < 300 && !stop_seen; ++k) {
-    rig.peer.send_cmd(3300.0f, 60.0f);
-    rig.peer.send_shift(8000.0f, 2.6f);
+  for (int k = 0; k < 600 && !stop_seen; ++k) {
+    rig.peer.send_cmd(12500.0f, 60.0f);
+    rig.peer.send_shift(16000.0f, 2.6f);
     g = rig.step(10);
     stop_seen = g.shift.end_stop_underdrive;
   }
   CHECK(stop_seen);
   CHECK(g.ratio.geometric_ratio > 2.5f);
-  CHECK(std::fabs(g.forces.driven_axial_force_N - 8000.0f) < 100.0f);
+  CHECK(std::fabs(g.forces.driven_axial_force_N - 16000.0f) < 100.0f);
   CHECK(rig.bridge.plant().stop_refined_frames() > 0);
   CHECK(g.status.plant_mode == can::PlantMode::LockStep);
   // The controller stops sending CtrlShiftCmd: after 50 ms the timeout
-  // flag, and the driven command ramps from 8 kN toward 20 kN at 50 N per
+  // flag, and the driven command ramps from 16 kN toward 20 kN at 50 N per
   // frame (the DBC's Ramp), never a step.
   const double before = rig.bridge.driven_command();
   for (int k = 0; k < 10; ++k) {
-    rig.peer.send_cmd(3300.0f, 60.0f);
+    rig.peer.send_cmd(12500.0f, 60.0f);
     g = rig.step(10);
   }
   CHECK(g.status.fault_cmd_timeout);

@@ -61,8 +61,8 @@ TEST_CASE("external controller, lock-step: the protocol gives the example contro
   cfg.out_dir = out_dir("external");
   const ScenarioResult r = run_lockstep(scenario("kick-down"), rig.h, rig.hf, rig.ext, cfg);
   for (const Check& c : r.checks) CHECK_MESSAGE(c.pass, c.name, ": ", c.detail);
-  CHECK(check(r, "controller_answered").detail.find("all 550 periods answered") != std::string::npos);
-  CHECK(check(r, "commands_e2e_valid").detail.find("550 CtrlCmd and 550 CtrlShiftCmd frames checked") !=
+  CHECK(check(r, "controller_answered").detail.find("all 600 periods answered") != std::string::npos);
+  CHECK(check(r, "commands_e2e_valid").detail.find("600 CtrlCmd and 600 CtrlShiftCmd frames checked") !=
         std::string::npos);
   REQUIRE(inproc.size() > 10000);
   CHECK(slurp(cfg.out_dir + "/sil-kick-down.csv") == inproc);
@@ -156,7 +156,7 @@ TEST_CASE("external controller, real time on the virtual clock: paced, on time; 
       CHECK(check(r, "controller_on_time").detail.find("0 later than 15 ms") != std::string::npos);
     } else {
       // 150 commands, then silence to the end: one gap beyond the deadline.
-      expect_failure(r, "controller_on_time", "150 CtrlCmd (549 10 ms periods)", "external-out/rt-silent");
+      expect_failure(r, "controller_on_time", "150 CtrlCmd (599 10 ms periods)", "external-out/rt-silent");
       CHECK(check(r, "controller_on_time").detail.find("1 at or beyond the plant's 50 ms deadline") !=
             std::string::npos);
       CHECK_FALSE(check(r, "no_cmd_timeout").pass);

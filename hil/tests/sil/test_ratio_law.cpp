@@ -26,17 +26,37 @@ cvtctl::RatioLawInputs at(float ratio, float target, float r1_m, float torque_Nm
 TEST_CASE("ratio law: clamping for the safety factor at the running radius, balance from the map at zero error") {
   const cvtctl::RatioLawParams p;
   cvtctl::RatioLaw law(p);
-  const cvtctl::RatioLawOutputs o = law.step(at(1.5f, 1.5f, 0.0762f, 60.0f));
-  // tau_cap = 2 mu0 F1 r1 / cos(beta) = safety * 60 N m.
+  // 200 N m: above the torque the clamping floor carries.
+  const cvtctl::RatioLawOutputs o = law.step(at(1.5f, 1.5f, 0.0762f, 200.0f));
+  // tau_cap = 2 mu0 F1 r1 / cos(beta) = safety * 200 N m.
   const double cap = 2.0 * p.clamp.mu0 * o.driver_clamp_cmd_N * 0.0762 / p.clamp.cos_beta;
-  CHECK(cap == doctest::Approx(1.3 * 60.0).epsilon(1e-5));
+  CHECK(cap == doctest::Approx(1.3 * 200.0).epsilon(1e-5));
   // At the set-point the thrust ratio is the map's equilibrium kappa(1.5).
   CHECK(o.driver_clamp_cmd_N / o.driven_clamp_cmd_N == doctest::Approx(0.90738).epsilon(1e-5));
   // At the underdrive end (r1 = 51.2 mm) the same torque needs 76.2/51.2 times the clamping.
   cvtctl::RatioLaw low(p);
-  const cvtctl::RatioLawOutputs ol = low.step(at(2.6498f, 2.6498f, 0.0512f, 60.0f));
+  const cvtctl::RatioLawOutputs ol = low.step(at(2.6498f, 2.6498f, 0.0512f, 200.0f));
   CHECK(ol.driver_clamp_cmd_N / o.driver_clamp_cmd_N == doctest::Approx(0.0762 / 0.0512).epsilon(1e-5));
   CHECK(ol.driver_clamp_cmd_N / ol.driven_clamp_cmd_N == doctest::Approx(0.80494).epsilon(1e-5));
+}
+
+TEST_CASE("ratio law: below the floor's torque the smaller clamping sits at the floor, the other shifts") {
+  // The production CVT's calibration: mu0 0.09, a 12.5 kN floor on each pulley.
+  const cvtctl::RatioLawParams p;
+  CHECK(p.clamp.mu0 == 0.09f);
+  CHECK(p.clamp.clamp_min_N == 12500.0f);
+  // 60 N m needs 5.5 kN at ratio 1.5: the driver (kappa < 1, the smaller) at the floor.
+  cvtctl::RatioLaw mid(p);
+  const cvtctl::RatioLawOutputs o = mid.step(at(1.5f, 1.5f, 0.0762f, 60.0f));
+  CHECK(o.driver_clamp_cmd_N == 12500.0f);
+  CHECK(o.driven_clamp_cmd_N == doctest::Approx(12500.0 / 0.90738).epsilon(1e-5));
+  // In overdrive the map's kappa is above 1: the driven clamping is the
+  // smaller one and sits at the floor, the driver's above it keeps the balance.
+  cvtctl::RatioLaw od(p);
+  const cvtctl::RatioLawOutputs q = od.step(at(0.8908f, 0.8908f, 0.0969f, 60.0f));
+  CHECK(q.thrust_ratio == doctest::Approx(1.02855).epsilon(1e-5));
+  CHECK(q.driven_clamp_cmd_N == doctest::Approx(12500.0).epsilon(1e-5));
+  CHECK(q.driver_clamp_cmd_N / q.driven_clamp_cmd_N == doctest::Approx(1.02855).epsilon(1e-5));
 }
 
 TEST_CASE("ratio law: a ratio above the set-point raises the thrust ratio (upshift), below lowers it") {
@@ -62,8 +82,8 @@ TEST_CASE("ratio law: a ratio above the set-point raises the thrust ratio (upshi
 
 TEST_CASE("ratio law: slip raises both clampings in proportion, so the balance does not move") {
   cvtctl::RatioLaw law;
-  const cvtctl::RatioLawOutputs calm = law.step(at(1.5f, 1.5f, 0.0762f, 60.0f));
-  cvtctl::RatioLawInputs in = at(1.5f, 1.5f, 0.0762f, 60.0f);
+  const cvtctl::RatioLawOutputs calm = law.step(at(1.5f, 1.5f, 0.0762f, 150.0f));
+  cvtctl::RatioLawInputs in = at(1.5f, 1.5f, 0.0762f, 150.0f);
   in.slip = 0.2f;
   const cvtctl::RatioLawOutputs slipping = law.step(in);
   CHECK(slipping.driver_clamp_cmd_N > calm.driver_clamp_cmd_N + 1000.0f);
@@ -128,16 +148,17 @@ TEST_CASE("ratio law: on an end stop the integral rests, so a set-point beyond t
   const cvtctl::RatioLawParams p;
   const cvtctl::ThrustMap map;
   cvtctl::RatioLaw law(p);
-  // Set-point 2.9 beyond the underdrive stop, the chain held on it at 2.65.
-  cvtctl::RatioLawInputs in = at(2.65f, 2.9f, 0.0512f, 60.0f);
+  // Set-point 2.75 beyond the underdrive stop, the chain held on it at 2.65
+  // (the proportional part, -0.2, inside the correction bound).
+  cvtctl::RatioLawInputs in = at(2.65f, 2.75f, 0.0512f, 60.0f);
   in.on_end_stop = true;
   cvtctl::RatioLawOutputs o{};
   for (int i = 0; i < 500; ++i) o = law.step(in);
   // Proportional part only: the chain is pushed onto the stop, nothing stored.
-  CHECK(o.thrust_ratio == doctest::Approx(map.at(2.9f) + p.kp * (2.65f - 2.9f)).epsilon(1e-5));
+  CHECK(o.thrust_ratio == doctest::Approx(map.at(2.75f) + p.kp * (2.65f - 2.75f)).epsilon(1e-5));
   // Off the stop the integral starts from zero.
   in.on_end_stop = false;
   o = law.step(in);
   CHECK(o.thrust_ratio ==
-        doctest::Approx(map.at(2.9f) + p.kp * -0.25f + p.ki * -0.25f * p.period_s).epsilon(1e-5));
+        doctest::Approx(map.at(2.75f) + p.kp * -0.1f + p.ki * -0.1f * p.period_s).epsilon(1e-5));
 }

@@ -51,20 +51,32 @@ struct ThrustMap {
   }
 };
 
+// The ECU's clamping calibration for the CVT the ratio scenes run, the
+// production-like chain CVT (docs/sil.md#ratio-control): pin-sheave friction
+// mu0 = 0.09 and a clamping floor of 12.5 kN on each pulley.
+constexpr ClampLawParams production_clamp_law() {
+  ClampLawParams c;
+  c.mu0 = 0.09f;
+  c.clamp_min_N = 12500.0f;
+  return c;
+}
+
 struct RatioLawParams {
-  ClampLawParams clamp{};        // mu0, cos(beta), safety, limits, the slip loop
+  ClampLawParams clamp = production_clamp_law();  // mu0, cos(beta), safety, limits, the slip loop
   ThrustMap map{};
-  float kp = 0.60f;              // thrust ratio per unit of ratio error
-  float ki = 0.30f;              // thrust ratio per unit of ratio error and second
-  float integral_max = 0.10f;    // bound of the integral part (anti-windup)
-  // Bound of the whole correction around the map: the radial friction lets
-  // the chain creep at about 3.5 ratio/s per unit of thrust-ratio error up
-  // to 0.17, and break away (a jump to the stop, slip 0.24) at 0.3
-  // (docs/sil.md#ratio-control).
-  float correction_max = 0.20f;
-  float thrust_min = 0.60f, thrust_max = 1.40f;
-  float shift_rate_max = 0.6f;   // ratio per second the reference may move
-  float shift_gain_per_s = 3.5f; // g: ratio per second per unit of thrust-ratio imbalance
+  // The production CVT's chain shifts at about g = 1.3 ratio/s per unit of
+  // thrust-ratio imbalance, linearly up to 0.3 at least (its radial motion
+  // is damped, docs/sil.md#ratio-control): kp = 2 gives a time constant
+  // 1 / (g kp) of about 0.4 s.
+  float kp = 2.0f;               // thrust ratio per unit of ratio error
+  float ki = 0.75f;              // thrust ratio per unit of ratio error and second
+  float integral_max = 0.20f;    // bound of the integral part (anti-windup)
+  // Bound of the whole correction around the map: the feed-forward of the
+  // bounded shift speed (0.5 / 1.3 = 0.38) and a margin for the error.
+  float correction_max = 0.45f;
+  float thrust_min = 0.35f, thrust_max = 1.50f;  // the driven clamping at most 2.9 times the driver's
+  float shift_rate_max = 0.5f;   // ratio per second the reference may move
+  float shift_gain_per_s = 1.3f; // g: ratio per second per unit of thrust-ratio imbalance
   float period_s = 0.01f;
 };
 
@@ -118,10 +130,12 @@ class RatioLaw {
     // Without fresh data: the clamping for the demand at the last known
     // radius, the thrust ratio from the map and the held integral.
     const float level = c.safety * clamp_for_torque_at_N(c, tau_ref, r1);
-    const float f1 = clamp_f(level + extra_N_, c.clamp_min_N, c.clamp_max_N);
     const float feed = -step / (p_.period_s * p_.shift_gain_per_s);
     const float corr = clamp_f(feed + p_.kp * err + integral_, -p_.correction_max, p_.correction_max);
     const float k = clamp_f(p_.map.at(ref_) + corr, p_.thrust_min, p_.thrust_max);
+    // The smaller clamping sits at the floor, the other is raised to shift
+    // (in overdrive, k > 1, the driven one is the smaller).
+    const float f1 = clamp_f(level + extra_N_, c.clamp_min_N * (k > 1.0f ? k : 1.0f), c.clamp_max_N);
     out.thrust_ratio = k;
     out.driver_clamp_cmd_N = f1;
     out.driven_clamp_cmd_N = clamp_f(f1 / k, c.clamp_min_N, c.clamp_max_N);

@@ -5,8 +5,10 @@
 #include <cstring>
 
 #include "cvtplant/scene/calibrated_params.hpp"
+#include "cvtplant/scene/calibrated_production.hpp"
 #include "cvtplant/scene/calibrated_tension.hpp"
 #include "cvtplant/scene/calibrated_wrap_tension.hpp"
+#include "cvtplant/scene/production_params.hpp"
 #include "cvtplant/scene/scene.hpp"
 
 namespace cvt {
@@ -145,17 +147,32 @@ constexpr Scene gross_slip() {
   return s;
 }
 
+// The controller scenes' CVT: the production-like chain CVT
+// (docs/rom.md#production-lumps), its lumps derived from the multibody
+// reference's production set, with the values fitted to it
+// (calibrated_production.hpp, written with tools/params/production.toml;
+// docs/validation.md#calibrated-production).
+constexpr void production_cvt(RomParams& p) {
+  production::apply(p);
+  calibrated::apply_production(p);
+}
+
 constexpr Scene ratio_control() {
   Scene s;
   s.name = "ratio-control";
-  s.summary = "variable ratio (wedging) at 60 N m and 3.3 kN primary clamping, road load: the plant for ratio control over CAN";
-  s.features = rom_feature::axial | rom_feature::road_load | rom_feature::wedging;
-  s.params.friction = friction_presets::table2_case1<double>();
+  s.summary =
+      "production-like chain CVT, every physics (wedging, tension, road load): 60 N m, 11.3 kN primary against the "
+      "12.5 kN driven clamping (ratio 1.5 held), 150/100 rad/s; the plant for ratio control over CAN";
+  s.features = rom_feature::axial | rom_feature::road_load | rom_feature::wedging | rom_feature::tension;
+  production_cvt(s.params);
+  s.reference_set = "production";
   road(s);
   s.initial.omega1_rad_s = 150.0;
   s.initial.omega2_rad_s = 100.0;
   s.tau_in = constant_profile(60.0);
-  s.clamp = constant_profile(3300.0);
+  // kappa(0) = theta1/theta2 = 0.907382 of the driven clamping holds the
+  // set-up ratio without load (docs/rom.md#wedging).
+  s.clamp = constant_profile(production::kClampMin_N * 0.90738229);
   s.t_end_s = 10.0;
   return s;
 }

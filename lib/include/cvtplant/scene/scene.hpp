@@ -172,6 +172,11 @@ struct Scene {
   // leave it off (docs/rom.md#cost); the log's energy group needs it.
   bool energy_ledger = true;
   std::uint32_t log = rom_log::torques | rom_log::friction | rom_log::energy;
+  // The multibody reference's parameter set the scene is validated against
+  // (docs/validation.md#parameter-sets): "seed" (Table 1) or "production"
+  // (the production-like chain CVT of the controller scenes). Offline tools
+  // only; the plant does not read it.
+  const char* reference_set = "seed";
 };
 
 // First problem found in a scene, or ok (docs/rom.md#scene-validation). Field
