@@ -14,6 +14,7 @@
 
 #include "cvtplant/math/detmath.hpp"
 #include "cvtplant/mbd/geometry.hpp"
+#include "cvtplant/mbd/params.hpp"
 #include "cvtplant/physics/seed.hpp"
 #include "cvtplant/plant/rom_formulas.hpp"
 #include "cvtplant/validation/cache.hpp"
@@ -126,6 +127,7 @@ struct ReferencePlant::Loaded {
   double clamp_max_N = 0.0;
   double thrust_ratio = 1.0;   // driven over driver clamping without a driven command (theta2 / theta1)
   cvt::sil::PublishedParams published;
+  double settle_rtol = 1e-8;   // the start-up's tolerance: the set's (docs/mbd.md#start-up)
   int keeps_time = -1;         // the probe's verdict: -1 not yet measured
   std::string realtime_refusal;  // why not, when not
 };
@@ -140,15 +142,26 @@ bool ReferencePlant::load(const cvt::Scene& s) {
     load_refusal_ = "its frame is not a whole number of microseconds";
     return false;
   }
+  // The scene's parameter set (docs/validation.md#parameter-sets): the
+  // controller scenes run against the production-like chain CVT.
+  const auto set = cvt::mbd::parameter_set_by_name(s.reference_set ? s.reference_set : "");
+  if (!set) {
+    load_refusal_ = std::string("unknown reference parameter set '") + (s.reference_set ? s.reference_set : "") +
+                    "' (seed, production)";
+    return false;
+  }
   std::string why;
-  const auto p = cvt::validation::reference_params(s, cvt::validation::SheaveChoice::scene, why);
+  const auto p = cvt::validation::reference_params(s, cvt::validation::SheaveChoice::scene, *set, why);
   if (!p) {
     load_refusal_ = "the multibody reference cannot run it: " + why;
     return false;
   }
   auto l = std::make_unique<Loaded>();
   l->params = *p;
-  l->key = release_key(*p, opt_.stepper);
+  l->settle_rtol = cvt::validation::settle_rtol(*set);
+  cvt::mbd::StepperOptions keyed = opt_.stepper;
+  keyed.settle_rtol = l->settle_rtol;
+  l->key = release_key(*p, keyed);
   const cvt::RomParams& rp = s.params;
   // docs/rom.md#axial: the real-time plant's actuators, updated once per
   // frame as its driven actuator is (docs/rom.md#driven-clamping).
@@ -194,11 +207,17 @@ void ReferencePlant::fail(StepFault f, const std::string& what) {
   fault_message_ = what;
 }
 
+cvt::mbd::StepperOptions ReferencePlant::stepper_options() const {
+  cvt::mbd::StepperOptions so = opt_.stepper;
+  so.frame_s = static_cast<double>(frame_ns_) * 1e-9;
+  if (cur_) so.settle_rtol = cur_->settle_rtol;
+  return so;
+}
+
 void ReferencePlant::reset() {
   if (!loaded()) return;
   const double c0 = thread_cpu_s();
-  cvt::mbd::StepperOptions so = opt_.stepper;
-  so.frame_s = static_cast<double>(frame_ns_) * 1e-9;
+  const cvt::mbd::StepperOptions so = stepper_options();
   fault_ = StepFault::none;
   fault_message_.clear();
   frames_ = 0;
@@ -345,8 +364,7 @@ bool ReferencePlant::keeps_time() {
     l.realtime_refusal = "the multibody reference did not start: " + fault_message_;
     return false;
   }
-  cvt::mbd::StepperOptions so = opt_.stepper;
-  so.frame_s = static_cast<double>(frame_ns_) * 1e-9;
+  const cvt::mbd::StepperOptions so = stepper_options();
   Stepper probe(l.params, so, *l.release);
   std::vector<double> cpu;
   cpu.reserve(static_cast<std::size_t>(opt_.probe_frames));

@@ -111,6 +111,9 @@ class ReferencePlant {
  private:
   struct Loaded;
   void fail(cvt::mbd::StepFault f, const std::string& what);
+  // The options a stepper of the loaded scene runs with: the caller's, at
+  // the scene's frame and its parameter set's start-up tolerance.
+  cvt::mbd::StepperOptions stepper_options() const;
   // Keeps each wrap's running radius where it is defined; false when a wrap
   // has none this frame.
   bool hold_radii();
