@@ -36,11 +36,9 @@ h::ScenarioResult run_one(const h::Scenario& sc, h::InProcessBus& bus, h::PlantU
   h::FaultInjector faults(bus.harness_node());
   h::HarnessNode node(faults, kLoopbackReply_ns, plant.idle());
   if (!node.sync()) throw std::runtime_error("the plant on the loopback bus does not answer SimCtrl");
-  // The controller as `cvtplant-sil run` wires it by default: the clamping
-  // law of the fixed-ratio scenes, and the ratio law with the production
-  // CVT's clamping calibration (docs/sil.md#ratio-control).
+  // The controller as `cvtplant-sil run` wires it by default.
   const cvtctl::ClampLawParams law;
-  const cvtctl::RatioLawParams ratio_law;
+  const cvtctl::RatioLawParams ratio_law = h::example_ratio_law(law);
   h::ExampleController ctl(bus.controller_node(), law, ratio_law);
   h::RunConfig cfg;
   cfg.out_dir = dir;

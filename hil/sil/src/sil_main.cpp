@@ -324,9 +324,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   // --safety sets the clamping margin of both laws (ClampLaw, RatioLaw).
-  cvtctl::RatioLawParams ratio_law;
-  ratio_law.clamp.safety = law.safety;
-  ratio_law.clamp.clamp_min_N = clamp_floor_N;
+  const cvtctl::RatioLawParams ratio_law = example_ratio_law(law, clamp_floor_N);
   std::unique_ptr<ControllerUnderTest> ctl;
   ExampleController* example = nullptr;
   if (external) {

@@ -11,6 +11,18 @@
 
 namespace cvt::sil::harness {
 
+// The example ratio law as every harness command wires it
+// (docs/sil.md#ratio-control): the production CVT's clamping calibration,
+// with the fixed-ratio law's safety margin and a clamping floor on each
+// pulley.
+inline cvtctl::RatioLawParams example_ratio_law(const cvtctl::ClampLawParams& law,
+                                                float clamp_floor_N = cvtctl::production_clamp_law().clamp_min_N) {
+  cvtctl::RatioLawParams r;
+  r.clamp.safety = law.safety;
+  r.clamp.clamp_min_N = clamp_floor_N;
+  return r;
+}
+
 class ExampleController final : public ControllerUnderTest {
  public:
   // `bus` is the controller's own transport (its own socket on SocketCAN).
